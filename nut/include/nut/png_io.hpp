@@ -1,0 +1,39 @@
+// nut/png_io.hpp — HNI images as PNG files (OpenImageIO), with human metadata in text chunks.
+//
+// Pixels are stored and read back bit-exactly: alpha is never premultiplied, no colour conversion.
+// Writes go to a temporary file in the destination folder that is renamed over the destination,
+// so a failure never leaves a half-written file.
+#pragma once
+
+#include <cstdint>
+#include <string>
+
+#include <glm/vec3.hpp>
+
+#include <nut/error.hpp>
+#include <nut/image.hpp>
+
+namespace nut {
+
+// Stored as PNG text chunks nut:name, nut:generator, nut:units, nut:origin ("x y z", metres).
+struct HniText {
+  std::string name;
+  std::string generator;
+  std::string units = "m";
+  glm::dvec3 originM{0.0};  // world position of the root block's origin, full double precision
+};
+
+struct PngFile {
+  Image image;
+  HniText text;
+  std::uintmax_t fileBytes = 0;
+};
+
+// Writes an RGBA8 image. The PNG is compressed at the highest zlib level.
+Status writePng(const std::string& path, const Image& image, const HniText& text = {});
+
+// Reads a PNG as RGBA8 (grey and RGB files gain channels; 16-bit files are refused). Errors name
+// the file.
+Result<PngFile> readPng(const std::string& path);
+
+}  // namespace nut

@@ -1,0 +1,191 @@
+// The NUT model: construction helpers, rotations, structural checks and the millimetre snapping
+// that defines what an encoded hierarchy decodes to.
+#include <nut/hierarchy.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <numbers>
+#include <string>
+
+#include <nut/format.hpp>
+#include <nut/units.hpp>
+
+namespace nut {
+
+namespace {
+
+std::array<glm::mat<3, 3, int>, format::kCubeRotationCount> makeCubeRotations() {
+  // Signed permutation matrices with determinant +1, in a fixed order: permutations of the axes
+  // lexicographically, then sign patterns by increasing bit mask. The order is part of the format.
+  std::array<glm::mat<3, 3, int>, format::kCubeRotationCount> out{};
+  int perm[3] = {0, 1, 2};
+  int n = 0;
+  do {
+    for (int signs = 0; signs < 8; ++signs) {
+      glm::mat<3, 3, int> m(0);
+      for (int column = 0; column < 3; ++column) m[column][perm[column]] = (signs >> column & 1) ? -1 : 1;
+      const int det = m[0][0] * (m[1][1] * m[2][2] - m[2][1] * m[1][2]) -
+                      m[1][0] * (m[0][1] * m[2][2] - m[2][1] * m[0][2]) +
+                      m[2][0] * (m[0][1] * m[1][2] - m[1][1] * m[0][2]);
+      if (det == 1) out[n++] = m;
+    }
+  } while (std::next_permutation(perm, perm + 3));
+  return out;
+}
+
+std::string cellName(BlockId b, const Block& block, std::size_t index) {
+  const auto nx = static_cast<std::size_t>(block.cellCount(0));
+  const auto ny = static_cast<std::size_t>(block.cellCount(1));
+  return "block " + std::to_string(b) + " cell (" + std::to_string(index % nx) + "," +
+         std::to_string(index / nx % ny) + "," + std::to_string(index / (nx * ny)) + ")";
+}
+
+const char* axisName(int a) { return a == 0 ? "x" : a == 1 ? "y" : "z"; }
+
+}  // namespace
+
+glm::mat<3, 3, int> cubeRotationMatrix(int index) {
+  static const auto rotations = makeCubeRotations();
+  return rotations.at(static_cast<std::size_t>(index));
+}
+
+glm::dmat3 rotationMatrix(const Rotation& r) {
+  const double angle = 2.0 * std::numbers::pi * r.yaw / format::kYawSteps;
+  const double c = std::cos(angle), s = std::sin(angle);
+  // Right-handed rotation about +y: counter-clockwise seen from above. Columns are images of axes.
+  const glm::dmat3 yaw(glm::dvec3(c, 0, -s), glm::dvec3(0, 1, 0), glm::dvec3(s, 0, c));
+  return yaw * glm::dmat3(cubeRotationMatrix(r.cube));
+}
+
+Block Block::fromSizes(const std::array<std::vector<double>, 3>& sizesM) {
+  Block b;
+  std::size_t count = 1;
+  for (int a = 0; a < 3; ++a) {
+    b.boundsM[a].push_back(0.0);
+    for (double s : sizesM[a]) b.boundsM[a].push_back(b.boundsM[a].back() + s);
+    count *= sizesM[a].size();
+  }
+  b.cells.assign(count, Cell::empty());
+  return b;
+}
+
+std::uint16_t Hierarchy::addMaterial(const Material& m) {
+  const auto it = std::find(materials.begin(), materials.end(), m);
+  if (it != materials.end()) return static_cast<std::uint16_t>(it - materials.begin());
+  materials.push_back(m);
+  return static_cast<std::uint16_t>(materials.size() - 1);
+}
+
+Status checkHierarchy(const Hierarchy& h) {
+  if (h.blocks.empty()) return Error{"hierarchy has no blocks"};
+  if (h.root >= h.blocks.size())
+    return Error{"root block " + std::to_string(h.root) + " out of range (" +
+                 std::to_string(h.blocks.size()) + " blocks)"};
+  for (BlockId b = 0; b < h.blocks.size(); ++b) {
+    const Block& block = h.blocks[b];
+    const std::string where = "block " + std::to_string(b);
+    std::size_t count = 1;
+    for (int a = 0; a < 3; ++a) {
+      const auto& bounds = block.boundsM[a];
+      if (bounds.size() < 2) return Error{where + " axis " + axisName(a) + ": no cells"};
+      if (bounds.front() != 0.0)
+        return Error{where + " axis " + axisName(a) + ": first boundary must be 0"};
+      for (std::size_t i = 1; i < bounds.size(); ++i)
+        if (!std::isfinite(bounds[i]) || !(bounds[i] > bounds[i - 1]))
+          return Error{where + " axis " + axisName(a) + ": boundary " + std::to_string(i) +
+                       " is not finite and greater than the previous one"};
+      count *= bounds.size() - 1;
+    }
+    if (block.cells.size() != count)
+      return Error{where + ": " + std::to_string(block.cells.size()) + " cells, expected " +
+                   std::to_string(count)};
+    for (std::size_t i = 0; i < block.cells.size(); ++i) {
+      const Cell& c = block.cells[i];
+      if (c.kind == CellKind::Solid) {
+        if (c.solid.index >= kSolidCount)
+          return Error{cellName(b, block, i) + ": solid " + std::to_string(c.solid.index) +
+                       " out of range"};
+        if (c.material >= h.materials.size())
+          return Error{cellName(b, block, i) + ": material " + std::to_string(c.material) +
+                       " out of range (" + std::to_string(h.materials.size()) + " materials)"};
+        if (c.texture > h.textures.size())
+          return Error{cellName(b, block, i) + ": texture " + std::to_string(c.texture) +
+                       " out of range (" + std::to_string(h.textures.size()) + " textures)"};
+      } else if (c.kind == CellKind::Redirection && c.redirection >= block.redirections.size()) {
+        return Error{cellName(b, block, i) + ": redirection " + std::to_string(c.redirection) +
+                     " out of range"};
+      }
+    }
+    for (std::size_t r = 0; r < block.redirections.size(); ++r) {
+      const Redirection& red = block.redirections[r];
+      const std::string rw = where + " redirection " + std::to_string(r);
+      if (red.target >= h.blocks.size()) return Error{rw + ": target block out of range"};
+      if (red.rotation.cube >= format::kCubeRotationCount)
+        return Error{rw + ": cube rotation out of range"};
+      for (int a = 0; a < 3; ++a)
+        if (!std::isfinite(red.offsetM[a])) return Error{rw + ": offset is not finite"};
+    }
+  }
+  // The hierarchy must be a DAG: depth-first search with an on-stack mark.
+  enum class Mark { None, OnStack, Done };
+  std::vector<Mark> mark(h.blocks.size(), Mark::None);
+  std::function<std::optional<BlockId>(BlockId)> visit = [&](BlockId b) -> std::optional<BlockId> {
+    mark[b] = Mark::OnStack;
+    for (const Redirection& r : h.blocks[b].redirections) {
+      if (mark[r.target] == Mark::OnStack) return b;
+      if (mark[r.target] == Mark::None)
+        if (auto cycle = visit(r.target)) return cycle;
+    }
+    mark[b] = Mark::Done;
+    return std::nullopt;
+  };
+  for (BlockId b = 0; b < h.blocks.size(); ++b)
+    if (mark[b] == Mark::None)
+      if (auto cycle = visit(b))
+        return Error{"block " + std::to_string(*cycle) + ": redirection cycle (the hierarchy must be a DAG)"};
+  return Ok{};
+}
+
+int dagDepth(const Hierarchy& h) {
+  std::vector<int> depth(h.blocks.size(), -1);
+  std::function<int(BlockId)> visit = [&](BlockId b) {
+    if (depth[b] >= 0) return depth[b];
+    int d = 0;
+    for (const Cell& c : h.blocks[b].cells)
+      if (c.kind == CellKind::Redirection)
+        d = std::max(d, 1 + visit(h.blocks[b].redirections[c.redirection].target));
+    return depth[b] = d;
+  };
+  return h.blocks.empty() ? 0 : visit(h.root);
+}
+
+Hierarchy quantized(const Hierarchy& h) {
+  Hierarchy q = h;
+  for (Block& block : q.blocks) {
+    for (auto& bounds : block.boundsM)
+      for (double& b : bounds) b = snapToUnits(b);
+    // Redirections become one record per distinct value, listed in order of first use by the
+    // cells (x fastest): that is the order decode() recovers them in.
+    for (Redirection& r : block.redirections)
+      for (int a = 0; a < 3; ++a) r.offsetM[a] = snapToUnits(r.offsetM[a]);
+    std::vector<Redirection> used;
+    for (Cell& c : block.cells) {
+      if (c.kind != CellKind::Redirection) {
+        if (c.kind == CellKind::Empty) c = Cell::empty();
+        c.redirection = 0;
+        continue;
+      }
+      const Redirection& r = block.redirections[c.redirection];
+      auto it = std::find(used.begin(), used.end(), r);
+      if (it == used.end()) it = used.insert(used.end(), r);
+      c = Cell::redirect(static_cast<std::uint32_t>(it - used.begin()));
+    }
+    block.redirections = std::move(used);
+  }
+  for (TextureInfo& t : q.textures)
+    for (int a = 0; a < 3; ++a) t.offsetM[a] = snapToUnits(t.offsetM[a]);
+  return q;
+}
+
+}  // namespace nut

@@ -1,0 +1,26 @@
+#!/usr/bin/env bash
+# Installs every system dependency of nut from Debian 12 packages.
+# Idempotent: when everything is already installed it prints nothing and exits 0.
+set -euo pipefail
+
+packages=(
+  build-essential cmake pkg-config
+  # core: PNG I/O, maths, CLI, JSON
+  libopenimageio-dev openimageio-tools libglm-dev
+  libcli11-dev nlohmann-json3-dev
+  # tests, fuzzing and benchmarks
+  libgtest-dev libbenchmark-dev libstb-dev clang-14 libclang-rt-14-dev
+)
+
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+[ ${#missing[@]} -eq 0 ] && exit 0
+
+echo "install-deps: installing ${missing[*]}" >&2
+sudo_cmd=()
+[ "$(id -u)" -ne 0 ] && sudo_cmd=(sudo)
+export DEBIAN_FRONTEND=noninteractive
+"${sudo_cmd[@]}" apt-get update -qq
+"${sudo_cmd[@]}" apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null

@@ -1,0 +1,142 @@
+// compile / decode round trips on seeded random hierarchies, and the metadata error bound measured
+// through HniView on every boundary of every block, the way the shader reads the image.
+#include <gtest/gtest.h>
+
+#include <nut/hni.hpp>
+#include <nut/hni_view.hpp>
+#include <nut/units.hpp>
+
+#include "random_hierarchy.hpp"
+
+namespace nut {
+namespace {
+
+Hierarchy withoutSummaries(Hierarchy h) {
+  for (Block& b : h.blocks) b.summary.reset();
+  return h;
+}
+
+TEST(HniRoundTrip, RandomHierarchiesDecodeToTheirQuantizedSelf) {
+  for (std::uint64_t seed = 0; seed < 300; ++seed) {
+    const Hierarchy h = testing::randomHierarchy(seed);
+    auto image = compile(h);
+    ASSERT_TRUE(image.ok()) << "seed " << seed << ": " << image.error().message;
+    ASSERT_TRUE(validate(*image).ok()) << "seed " << seed << ": " << validate(*image).error().message;
+    auto decoded = decode(*image);
+    ASSERT_TRUE(decoded.ok()) << "seed " << seed << ": " << decoded.error().message;
+    ASSERT_EQ(withoutSummaries(*decoded), quantized(h)) << "seed " << seed;
+    // Re-encoding the decoded hierarchy reproduces the image byte for byte.
+    auto again = compile(*decoded);
+    ASSERT_TRUE(again.ok());
+    ASSERT_EQ(*again, *image) << "seed " << seed;
+  }
+}
+
+TEST(HniRoundTrip, MillimetreGridIsExact) {
+  for (std::uint64_t seed = 1000; seed < 1100; ++seed) {
+    // A producer that works in whole millimetres: every boundary is toMetres(integer).
+    Hierarchy h = testing::randomHierarchy(seed);
+    for (Block& block : h.blocks)
+      for (auto& bounds : block.boundsM)
+        for (double& b : bounds) b = toMetres(toUnits(b));
+    auto image = compile(h);
+    ASSERT_TRUE(image.ok()) << image.error().message;
+    auto decoded = decode(*image);
+    ASSERT_TRUE(decoded.ok());
+    for (std::size_t b = 0; b < h.blocks.size(); ++b)
+      ASSERT_EQ(decoded->blocks[b].boundsM, h.blocks[b].boundsM) << "seed " << seed << " block " << b;
+  }
+}
+
+TEST(HniRoundTrip, LargeHierarchiesUseSeveralRowsOfEveryTable) {
+  testing::RandomHierarchyOptions options;
+  options.minBlocks = 300;
+  options.maxBlocks = 320;
+  options.maxCellsPerAxis = 3;
+  const Hierarchy h = testing::randomHierarchy(7, options);
+  auto image = compile(h);
+  ASSERT_TRUE(image.ok()) << image.error().message;
+  auto decoded = decode(*image);
+  ASSERT_TRUE(decoded.ok()) << decoded.error().message;
+  EXPECT_EQ(withoutSummaries(*decoded), quantized(h));
+}
+
+// Paper 3.2: E <= D / (512 (W + w)) for the heuristic; the exact row is the model's boundary.
+TEST(HniRoundTrip, HeuristicErrorWithinBoundOnEveryBoundaryExactErrorZero) {
+  long long boundaries = 0;
+  double worstRatio = 0;
+  for (std::uint64_t seed = 0; seed < 300; ++seed) {
+    const Hierarchy h = quantized(testing::randomHierarchy(seed));
+    auto image = compile(h);
+    ASSERT_TRUE(image.ok());
+    const HniView view(*image);
+    const FileRecord file = view.fileRecord();
+    for (int b = 0; b < file.blockCount; ++b) {
+      const BlockHeader header = view.header(view.blockAddress(file, b));
+      for (int a = 0; a < 3; ++a) {
+        const AxisView axis = view.axis(header, a);
+        const auto& truth = h.blocks[static_cast<std::size_t>(b)].boundsM[static_cast<std::size_t>(a)];
+        const double D = header.sizeUnits[a];
+        const double bound = D / (512.0 * axis.pixels);
+        int m = 1;
+        for (int k = 0; k < axis.pixels; ++k) {
+          if (axis.meta[4 * k + 1] == 0) continue;
+          const double exact = static_cast<double>(toUnits(truth[static_cast<std::size_t>(m)]));
+          const double heuristic = (k + axis.meta[4 * k + 1] / 256.0) * D / axis.pixels;
+          ASSERT_LE(std::abs(heuristic - exact), bound) << "seed " << seed << " block " << b << " axis " << a;
+          worstRatio = std::max(worstRatio, std::abs(heuristic - exact) / bound);
+          ASSERT_EQ(axis.exactPosition(k), exact);
+          ++m;
+          ++boundaries;
+        }
+      }
+    }
+  }
+  RecordProperty("boundaries_checked", std::to_string(boundaries));
+  RecordProperty("worst_error_over_bound", std::to_string(worstRatio));
+  EXPECT_GT(boundaries, 5000);
+}
+
+TEST(HniCompile, NamesTheBlockAndAxisThatBreaksALimit) {
+  Hierarchy h;
+  h.materials.push_back({});
+  h.addBlock(Block::fromSizes({{{1.0}, {1.0}, {1.0}}}));
+  Block wide = Block::fromSizes({{{1.0}, {0.001, 0.001, 400.0}, {1.0}}});
+  h.addBlock(wide);
+  h.blocks[0].redirections.push_back({1});
+  h.blocks[0].cells[0] = Cell::redirect(0);
+  auto image = compile(h);
+  ASSERT_FALSE(image.ok());
+  EXPECT_NE(image.error().message.find("block 1 axis y"), std::string::npos) << image.error().message;
+
+  Hierarchy far = h;
+  far.blocks[1] = Block::fromSizes({{{1.0}, {1.0}, {1.0}}});
+  far.blocks[0].redirections[0].offsetM = {9000.0, 0, 0};
+  image = compile(far);
+  ASSERT_FALSE(image.ok());
+  EXPECT_NE(image.error().message.find("block 0 redirection 0"), std::string::npos) << image.error().message;
+
+  Hierarchy cyclic = far;
+  cyclic.blocks[0].redirections[0].offsetM = {0, 0, 0};
+  cyclic.blocks[1].redirections.push_back({0});
+  image = compile(cyclic);
+  ASSERT_FALSE(image.ok());
+  EXPECT_NE(image.error().message.find("cycle"), std::string::npos) << image.error().message;
+}
+
+TEST(HniCompile, RootFileRecordAndMagic) {
+  const Hierarchy h = testing::randomHierarchy(42);
+  auto image = compile(h);
+  ASSERT_TRUE(image.ok());
+  const std::uint8_t* p = image->at(0, 0);
+  EXPECT_EQ(p[0], 'N');
+  EXPECT_EQ(p[1], 'U');
+  EXPECT_EQ(p[2], 'T');
+  EXPECT_EQ(p[3], format::kVersion);
+  const HniView view(*image);
+  EXPECT_EQ(view.fileRecord().root, view.blockAddress(view.fileRecord(), static_cast<int>(h.root)));
+  EXPECT_LE(image->width, format::kMaxSearchWidth);
+}
+
+}  // namespace
+}  // namespace nut
