@@ -61,6 +61,19 @@ TEST(HniRoundTrip, LargeHierarchiesUseSeveralRowsOfEveryTable) {
   EXPECT_EQ(withoutSummaries(*decoded), quantized(h));
 }
 
+TEST(HniRoundTrip, TwoHundredBlocksKeepTheirRecordsInTheMetadataRegion) {
+  // By area alone the data components would take the top rows first; compile falls back to
+  // placing the 8-bit-addressed records first.
+  testing::RandomHierarchyOptions options;
+  options.minBlocks = options.maxBlocks = 200;
+  const Hierarchy h = testing::randomHierarchy(9, options);
+  auto image = compile(h);
+  ASSERT_TRUE(image.ok()) << image.error().message;
+  auto decoded = decode(*image);
+  ASSERT_TRUE(decoded.ok()) << decoded.error().message;
+  EXPECT_EQ(withoutSummaries(*decoded), quantized(h));
+}
+
 // Paper 3.2: E <= D / (512 (W + w)) for the heuristic; the exact row is the model's boundary.
 TEST(HniRoundTrip, HeuristicErrorWithinBoundOnEveryBoundaryExactErrorZero) {
   long long boundaries = 0;

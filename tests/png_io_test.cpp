@@ -1,0 +1,92 @@
+// PNG I/O: bit-exact RGBA8 (alpha is data in an HNI, never premultiplied), text chunks with a
+// double-precision origin, atomic writes, and one clear error for files that are not PNGs.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <random>
+
+#include <nut/png_io.hpp>
+
+namespace nut {
+namespace {
+
+namespace fs = std::filesystem;
+
+fs::path outputDir() {
+  const fs::path dir = fs::path(NUT_TEST_OUTPUT_DIR) / "png_io";
+  fs::create_directories(dir);
+  return dir;
+}
+
+Image randomImage(int w, int h, std::uint64_t seed) {
+  std::mt19937_64 rng(seed);
+  Image image(w, h);
+  for (auto& byte : image.pixels) byte = static_cast<std::uint8_t>(rng());
+  // Transparent pixels with colour are the case premultiplication would destroy.
+  for (std::size_t i = 0; i < image.pixels.size(); i += 16) image.pixels[i + 3] = 0;
+  return image;
+}
+
+TEST(PngIo, RoundTripIsBitExact) {
+  const fs::path path = outputDir() / "random.png";
+  const Image image = randomImage(37, 11, 1);
+  HniText text{"test building", "png_io_test", "m", {1234567.891234567, -0.125, 7654321.000000001}};
+  ASSERT_TRUE(writePng(path.string(), image, text).ok());
+  auto read = readPng(path.string());
+  ASSERT_TRUE(read.ok()) << read.error().message;
+  EXPECT_EQ(read->image, image);
+  EXPECT_EQ(read->text.name, text.name);
+  EXPECT_EQ(read->text.generator, text.generator);
+  EXPECT_EQ(read->text.units, "m");
+  EXPECT_EQ(read->text.originM, text.originM);  // %.17g keeps doubles exact
+  EXPECT_EQ(read->fileBytes, fs::file_size(path));
+}
+
+TEST(PngIo, WriteLeavesNoTemporaryFiles) {
+  const fs::path dir = outputDir() / "atomic";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  ASSERT_TRUE(writePng((dir / "a.png").string(), randomImage(4, 4, 2)).ok());
+  ASSERT_TRUE(writePng((dir / "a.png").string(), randomImage(5, 5, 3)).ok());  // overwrite in place
+  int files = 0;
+  for (const auto& entry : fs::directory_iterator(dir)) {
+    ++files;
+    EXPECT_EQ(entry.path().filename(), "a.png");
+  }
+  EXPECT_EQ(files, 1);
+  EXPECT_EQ(readPng((dir / "a.png").string())->image.width, 5);
+}
+
+TEST(PngIo, FailedWriteLeavesNothing) {
+  const fs::path missing = outputDir() / "no-such-dir" / "x.png";
+  const Status s = writePng(missing.string(), randomImage(2, 2, 4));
+  ASSERT_FALSE(s.ok());
+  EXPECT_NE(s.error().message.find("x.png"), std::string::npos) << s.error().message;
+  EXPECT_FALSE(fs::exists(missing.parent_path()));
+}
+
+TEST(PngIo, ReadErrorsNameTheFile) {
+  const fs::path notPng = outputDir() / "not-a.png";
+  std::ofstream(notPng) << "this is text, not an image";
+  auto r = readPng(notPng.string());
+  ASSERT_FALSE(r.ok());
+  EXPECT_EQ(r.error().message.rfind(notPng.string(), 0), 0u) << r.error().message;
+  auto missing = readPng((outputDir() / "missing.png").string());
+  ASSERT_FALSE(missing.ok());
+  EXPECT_NE(missing.error().message.find("no such file"), std::string::npos);
+}
+
+TEST(PngIo, TruncatedPngIsAnError) {
+  const fs::path path = outputDir() / "truncated.png";
+  ASSERT_TRUE(writePng(path.string(), randomImage(64, 64, 5)).ok());
+  const auto size = fs::file_size(path);
+  for (auto keep : {size / 2, size - 20, std::uintmax_t{40}}) {
+    fs::resize_file(path, keep);
+    EXPECT_FALSE(readPng(path.string()).ok()) << keep << " bytes";
+    ASSERT_TRUE(writePng(path.string(), randomImage(64, 64, 5)).ok());
+  }
+}
+
+}  // namespace
+}  // namespace nut

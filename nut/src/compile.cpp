@@ -160,7 +160,12 @@ Result<Image> compile(const Hierarchy& h, const CompileOptions& options) {
   const packer::Rect fileRecord{0, 0, format::kFileRecordPixels, 1};
   packer::Options packOptions;
   packOptions.reserved = std::span<const packer::Rect>(&fileRecord, 1);
-  const auto layout = packer::packSearchWidth(items, options.maxSearchWidth, format::kMaxImageSize, packOptions);
+  auto layout = packer::packSearchWidth(items, options.maxSearchWidth, format::kMaxImageSize, packOptions);
+  if (!layout) {
+    // Large hierarchies: place the 8-bit-addressed records first so they keep the metadata region.
+    packOptions.regionLimitedFirst = true;
+    layout = packer::packSearchWidth(items, options.maxSearchWidth, format::kMaxImageSize, packOptions);
+  }
   if (!layout)
     return Error{"the records do not fit a " + std::to_string(format::kMaxImageSize) + "x" +
                  std::to_string(format::kMaxImageSize) + " image with headers and metadata arrays inside the " +

@@ -9,6 +9,7 @@
 #include <climits>
 #include <optional>
 #include <span>
+#include <utility>
 #include <vector>
 
 namespace packer {
@@ -54,6 +55,10 @@ struct Options {
   // Give up (nullopt) as soon as the bounding box of what is placed exceeds this area; the width
   // search uses it to abandon a width that can no longer beat the best one found.
   long long maxBoundingArea = LLONG_MAX;
+  // Online mode: insert items with a region limit before the others (each group by area). Large
+  // HNIs need it: by area alone, data components fill the top rows before the small 8-bit-addressed
+  // records come, and those then find no room in the metadata region. It costs some waste.
+  bool regionLimitedFirst = false;
 };
 
 struct Layout {

@@ -1,0 +1,31 @@
+// `nut`: the command-line tool. Parses the subcommand and hands over; errors are one line.
+#include <cstdio>
+#include <exception>
+
+#include "commands.hpp"
+
+int main(int argc, char** argv) {
+  CLI::App app{"nut: Non-Uniform Texture toolkit (HNI images of buildings)"};
+  app.require_subcommand(1);
+  app.footer("Examples:\n  nut info samples/hni/building.png --json\n  nut validate samples/hni/facade.png\n\n"
+             "Run `nut <command> --help` for the options of a command.");
+  int exitCode = nut::cli::kOk;
+  nut::cli::addInfoCommand(app, exitCode);
+  nut::cli::addValidateCommand(app, exitCode);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp&) {
+    std::fputs(app.help().c_str(), stdout);
+    return 0;
+  } catch (const CLI::CallForAllHelp&) {
+    std::fputs(app.help("", CLI::AppFormatMode::All).c_str(), stdout);
+    return 0;
+  } catch (const CLI::ParseError& e) {
+    std::fprintf(stderr, "error: %s (see nut --help)\n", e.what());
+    return nut::cli::kUsage;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "error: %s\n", e.what());
+    return nut::cli::kUnreadable;
+  }
+  return exitCode;
+}
