@@ -6,7 +6,7 @@ set -euo pipefail
 packages=(
   build-essential cmake pkg-config
   # core: PNG I/O, maths, CLI, JSON
-  libopenimageio-dev openimageio-tools libglm-dev
+  libopenimageio-dev openimageio-tools zlib1g-dev libglm-dev
   libcli11-dev nlohmann-json3-dev
   # tests, fuzzing and benchmarks
   libgtest-dev libbenchmark-dev libstb-dev clang-14 libclang-rt-14-dev

@@ -110,6 +110,27 @@ TEST(HniRoundTrip, HeuristicErrorWithinBoundOnEveryBoundaryExactErrorZero) {
   EXPECT_GT(boundaries, 5000);
 }
 
+// Paper 4.4: with many blocks the width search wastes little. Target: at most 1 % mean for
+// hierarchies of 40+ blocks; the figure goes to docs/BENCHMARKS.md.
+TEST(HniCompile, PackingWasteOfOneHundredHierarchiesOfFortyPlusBlocks) {
+  testing::RandomHierarchyOptions options;
+  options.minBlocks = 40;
+  options.maxBlocks = 120;
+  double sum = 0, worst = 0;
+  for (std::uint64_t seed = 0; seed < 100; ++seed) {
+    auto image = compile(testing::randomHierarchy(5000 + seed, options));
+    ASSERT_TRUE(image.ok()) << image.error().message;
+    const double waste = computeStats(*image).wastePct;
+    sum += waste;
+    worst = std::max(worst, waste);
+  }
+  const double mean = sum / 100;
+  std::printf("packing waste over 100 random hierarchies of 40-120 blocks: mean %.2f %%, max %.2f %%\n", mean, worst);
+  RecordProperty("waste_mean_pct", std::to_string(mean));
+  RecordProperty("waste_max_pct", std::to_string(worst));
+  EXPECT_LE(mean, 1.0);
+}
+
 TEST(HniCompile, NamesTheBlockAndAxisThatBreaksALimit) {
   Hierarchy h;
   h.materials.push_back({});

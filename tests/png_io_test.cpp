@@ -88,5 +88,18 @@ TEST(PngIo, TruncatedPngIsAnError) {
   }
 }
 
+TEST(PngIo, CorruptChunkIsNamed) {
+  const fs::path path = outputDir() / "corrupt.png";
+  ASSERT_TRUE(writePng(path.string(), randomImage(16, 16, 6)).ok());
+  {
+    std::fstream f(path, std::ios::in | std::ios::out | std::ios::binary);
+    f.seekp(40);  // inside the first chunks after IHDR
+    f.put('\x5a');
+  }
+  auto r = readPng(path.string());
+  ASSERT_FALSE(r.ok());
+  EXPECT_NE(r.error().message.find("CRC mismatch in chunk"), std::string::npos) << r.error().message;
+}
+
 }  // namespace
 }  // namespace nut

@@ -2,9 +2,12 @@
 #include <nut/png_io.hpp>
 
 #include <OpenImageIO/imageio.h>
+#include <zlib.h>
 
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <random>
 #include <sstream>
 
@@ -29,6 +32,42 @@ std::filesystem::path temporaryPath(const std::filesystem::path& path) {
   return path.parent_path() / (path.filename().string() + ".tmp" + std::to_string(device()));
 }
 
+// OpenImageIO's error text may span lines (libpng adds its own); keep the first.
+std::string firstLine(const std::string& text) { return text.substr(0, text.find('\n')); }
+
+std::uint32_t readBigEndian32(const std::uint8_t* p) {
+  return static_cast<std::uint32_t>(p[0]) << 24 | static_cast<std::uint32_t>(p[1]) << 16 |
+         static_cast<std::uint32_t>(p[2]) << 8 | p[3];
+}
+
+// Walks the PNG chunk structure (signature, lengths, CRCs, IHDR first, IEND last) so that a
+// truncated or corrupted file gets one precise error instead of a decoder's complaint midway.
+Status checkPngStructure(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  const std::vector<std::uint8_t> bytes{std::istreambuf_iterator<char>(in), {}};
+  static constexpr std::uint8_t kSignature[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
+  if (bytes.size() < 8 || !std::equal(kSignature, kSignature + 8, bytes.begin()))
+    return Error{path + ": not a PNG file (bad signature)"};
+  std::size_t at = 8;
+  bool first = true;
+  while (true) {
+    if (bytes.size() - at < 12)
+      return Error{path + ": truncated PNG: chunk header at byte " + std::to_string(at) + " runs past the end"};
+    const std::uint32_t length = readBigEndian32(&bytes[at]);
+    const std::string type(bytes.begin() + static_cast<std::ptrdiff_t>(at) + 4, bytes.begin() + static_cast<std::ptrdiff_t>(at) + 8);
+    if (length > bytes.size() - at - 12)
+      return Error{path + ": truncated PNG: chunk " + type + " at byte " + std::to_string(at) + " needs " +
+                   std::to_string(length) + " bytes, " + std::to_string(bytes.size() - at - 12) + " remain"};
+    const auto crc = crc32(crc32(0L, Z_NULL, 0), &bytes[at + 4], length + 4);
+    if (crc != readBigEndian32(&bytes[at + 8 + length]))
+      return Error{path + ": corrupt PNG: CRC mismatch in chunk " + type + " at byte " + std::to_string(at)};
+    if (first && type != "IHDR") return Error{path + ": corrupt PNG: first chunk is " + type + ", not IHDR"};
+    first = false;
+    at += 12 + length;
+    if (type == "IEND") return Ok{};
+  }
+}
+
 }  // namespace
 
 Status writePng(const std::string& path, const Image& image, const HniText& text) {
@@ -44,13 +83,13 @@ Status writePng(const std::string& path, const Image& image, const HniText& text
   if (!text.generator.empty()) spec.attribute(kGenerator, text.generator);
   if (!text.units.empty()) spec.attribute(kUnits, text.units);
   spec.attribute(kOrigin, formatOrigin(text.originM));
-  if (!out->open(temporary.string(), spec)) return Error{path + ": " + out->geterror()};
+  if (!out->open(temporary.string(), spec)) return Error{path + ": " + firstLine(out->geterror())};
   const bool written = out->write_image(OIIO::TypeDesc::UINT8, image.pixels.data());
   const bool closed = out->close();
   if (!written || !closed) {
     std::error_code ignored;
     std::filesystem::remove(temporary, ignored);
-    return Error{path + ": " + out->geterror()};
+    return Error{path + ": " + firstLine(out->geterror())};
   }
   std::error_code error;
   std::filesystem::rename(temporary, target, error);
@@ -64,10 +103,11 @@ Status writePng(const std::string& path, const Image& image, const HniText& text
 Result<PngFile> readPng(const std::string& path) {
   std::error_code error;
   if (!std::filesystem::is_regular_file(path, error)) return Error{path + ": no such file"};
+  if (Status s = checkPngStructure(path); !s) return s.error();
   OIIO::ImageSpec config;
   config.attribute("oiio:UnassociatedAlpha", 1);
   auto in = OIIO::ImageInput::open(path, &config);
-  if (!in) return Error{path + ": not a readable image: " + OIIO::geterror()};
+  if (!in) return Error{path + ": not a readable image: " + firstLine(OIIO::geterror())};
   const OIIO::ImageSpec& spec = in->spec();
   if (std::string(in->format_name()) != "png") return Error{path + ": not a PNG file"};
   if (spec.format != OIIO::TypeDesc::UINT8) return Error{path + ": not an 8-bit PNG"};
@@ -79,7 +119,7 @@ Result<PngFile> readPng(const std::string& path) {
   std::vector<std::uint8_t> raw(static_cast<std::size_t>(spec.width) * static_cast<std::size_t>(spec.height) *
                                 static_cast<std::size_t>(spec.nchannels));
   if (!in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::UINT8, raw.data()))
-    return Error{path + ": " + in->geterror()};
+    return Error{path + ": " + firstLine(in->geterror())};
   const int n = spec.nchannels;
   for (std::size_t i = 0; i < raw.size() / static_cast<std::size_t>(n); ++i) {
     const std::uint8_t* s = raw.data() + i * static_cast<std::size_t>(n);
