@@ -3,6 +3,8 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
+#include <limits>
 #include <random>
 
 #include <nut/metadata.hpp>
@@ -14,7 +16,7 @@ struct EncodedAxis {
   AxisIndex index;
   std::vector<std::uint8_t> meta, exact;
   AxisView view() const {
-    return {meta.data(), exact.data(), index.pixels(), index.cells, static_cast<float>(index.sizeUnits)};
+    return AxisView::make(meta.data(), exact.data(), index.pixels(), index.cells, static_cast<float>(index.sizeUnits));
   }
 };
 
@@ -134,6 +136,39 @@ TEST(Metadata, LookupsAgreeWithBinarySearch) {
   }
 }
 
+TEST(Metadata, PixelEdgesBoundariesAndOutOfRangeCoordinates) {
+  std::mt19937_64 rng(4);
+  for (int trial = 0; trial < 300; ++trial) {
+    const int n = std::uniform_int_distribution<int>(1, 80)(rng);
+    const auto bounds = randomBounds(rng, n, 4);
+    const EncodedAxis e = encode(bounds);
+    const AxisView v = e.view();
+    // On every metadata pixel edge, and one float step either side of it.
+    for (int k = 0; k <= v.pixels; ++k) {
+      const float edge = static_cast<float>(static_cast<double>(k) * static_cast<double>(bounds.back()) / v.pixels);
+      for (float x : {std::nextafter(edge, -1e30f), edge, std::nextafter(edge, 1e30f)}) {
+        if (x < 0 || x >= static_cast<float>(bounds.back())) continue;
+        ASSERT_EQ(v.cellExact(x), trueCell(bounds, x)) << "x = " << x << " near pixel edge " << k;
+      }
+    }
+    // One float step either side of every boundary.
+    for (int m = 1; m < n; ++m) {
+      const auto b = static_cast<float>(bounds[static_cast<std::size_t>(m)]);
+      ASSERT_EQ(v.cellExact(std::nextafter(b, 0.0f)), m - 1);
+      ASSERT_EQ(v.cellExact(b), m);
+    }
+    // Outside the block, and non-finite input, clamp to the end cells instead of reading outside.
+    for (float x : {-1.0f, -1e30f, -std::numeric_limits<float>::infinity(), std::numeric_limits<float>::quiet_NaN()}) {
+      ASSERT_EQ(v.cellHeuristic(x), 0);
+      ASSERT_EQ(v.cellExact(x), 0);
+    }
+    for (float x : {static_cast<float>(bounds.back()), 1e30f, std::numeric_limits<float>::infinity()}) {
+      ASSERT_EQ(v.cellHeuristic(x), n - 1);
+      ASSERT_EQ(v.cellExact(x), n - 1);
+    }
+  }
+}
+
 TEST(Metadata, JNumbersWalkEveryBoundaryInBothDirections) {
   std::mt19937_64 rng(3);
   for (int trial = 0; trial < 1000; ++trial) {
@@ -144,7 +179,7 @@ TEST(Metadata, JNumbersWalkEveryBoundaryInBothDirections) {
     // Land in the middle of every cell; the boundary ahead must be the cell's own boundary.
     for (int c = 0; c < n; ++c) {
       const float mid = static_cast<float>(bounds[static_cast<std::size_t>(c)] + bounds[static_cast<std::size_t>(c) + 1]) / 2;
-      const int k = v.clampPixel(mid * static_cast<float>(v.pixels) / v.size);
+      const int k = v.pixelOf(mid);
       ASSERT_EQ(v.cellExact(mid), c);
       if (c + 1 < n) {
         ASSERT_EQ(v.exactPosition(v.boundaryPixelAhead(k, c, +1)), static_cast<float>(bounds[static_cast<std::size_t>(c) + 1]));

@@ -142,13 +142,8 @@ class HniView {
   }
 
   AxisView axis(const BlockHeader& h, int a) const {
-    AxisView v;
-    v.meta = texel(h.meta[static_cast<std::size_t>(a)]);
-    v.exact = texel(h.meta[static_cast<std::size_t>(a)], 0, 1);
-    v.pixels = h.metaPixels[a];
-    v.cells = h.cells[a];
-    v.size = static_cast<float>(h.sizeUnits[a]);
-    return v;
+    const TexelAddress at = h.meta[static_cast<std::size_t>(a)];
+    return AxisView::make(texel(at), texel(at, 0, 1), h.metaPixels[a], h.cells[a], static_cast<float>(h.sizeUnits[a]));
   }
 
   // The data pixel of cell c: z is tiled along u, and rows run from the top cell (y = n_y - 1)

@@ -20,7 +20,11 @@
 // them.
 #pragma once
 
+#include <algorithm>
+#include <bit>
+#include <cmath>
 #include <cstdint>
+#include <cstring>
 #include <span>
 #include <vector>
 
@@ -28,6 +32,8 @@
 #include <nut/format.hpp>
 
 namespace nut {
+
+static_assert(std::endian::native == std::endian::little, "AxisView reads u24 fields with one 32-bit load");
 
 struct MetaPixel {
   std::uint8_t i = 0, f = 0, jLeft = 0, jRight = 0;
@@ -49,33 +55,57 @@ struct AxisIndex {
 Result<AxisIndex> buildAxisIndex(std::span<const std::int64_t> boundsUnits);
 
 // Read-only view of one axis's metadata as stored in an HNI: two rows of RGBA8 pixels.
+// Lookups are branch-free: a data-dependent branch on "does this pixel hold a boundary" is a coin
+// toss for random coordinates and cost 2-3x (docs/BENCHMARKS.md, lookup benchmark).
 struct AxisView {
   const std::uint8_t* meta = nullptr;   // M pixels: i, f, j_left, j_right
   const std::uint8_t* exact = nullptr;  // M pixels: boundary position u24, 0
   int pixels = 0;                       // M
   int cells = 0;                        // W
   float size = 0;                       // D in units
+  float scale = 0;                      // M / D: metadata pixels per unit
+  float stepScale = 0;                  // 256 M / D: steps of f per unit
+  float stepSize = 0;                   // D / (256 M): units per step of f
+  float lastPixel = 0;                  // the largest float below M
+  float lastStep = 0;                   // the largest float below 256 M
 
-  // Heuristic random access: the cell holding coordinate x (units, clamped into [0, D)).
-  int cellHeuristic(float x) const {
-    const float t = x * static_cast<float>(pixels) / size;
-    const int k = clampPixel(t);
-    const std::uint8_t* p = meta + 4 * k;
-    const float frac = (t - static_cast<float>(k)) * format::kFractionSteps;
-    return p[0] + (p[1] != 0 && frac >= static_cast<float>(p[1]) ? 1 : 0);
+  static AxisView make(const std::uint8_t* meta, const std::uint8_t* exact, int pixels, int cells, float size) {
+    AxisView v{meta, exact, pixels, cells, size};
+    v.scale = static_cast<float>(pixels) / size;
+    v.stepScale = v.scale * format::kFractionSteps;  // exact: a power-of-two multiple
+    v.stepSize = size / (static_cast<float>(pixels) * format::kFractionSteps);
+    v.lastPixel = std::nextafter(static_cast<float>(pixels), 0.0f);
+    v.lastStep = std::nextafter(static_cast<float>(pixels * format::kFractionSteps), 0.0f);
+    return v;
   }
 
-  // Exact random access: the metadata pixel picks the candidate, the exact row decides.
+  // Metadata pixel of coordinate x (units); outside [0, D) and NaN clamp to the end pixels.
+  int pixelOf(float x) const {
+    return static_cast<int>(std::min(lastPixel, std::max(0.0f, x * scale)));
+  }
+
+  // Heuristic random access: the cell holding coordinate x. q is x in 1/256-pixel steps; the
+  // pixel is q >> 8 and "f != 0 and the fraction reaches f" is one byte compare (f = 0 wraps
+  // to 255, which no fraction exceeds).
+  int cellHeuristic(float x) const {
+    const auto q = static_cast<std::uint32_t>(static_cast<int>(std::min(lastStep, std::max(0.0f, x * stepScale))));
+    const std::uint8_t* p = meta + 4 * static_cast<std::size_t>(q >> 8);
+    return p[0] + static_cast<int>(static_cast<std::uint8_t>(q) > static_cast<std::uint8_t>(p[1] - 1));
+  }
+
+  // Exact random access: the metadata pixel picks the candidate, the exact row decides. The exact
+  // pixel is 0 where f = 0 (validate() enforces it), so (e - 1) & 0xffffff + 1 is 2^24 there,
+  // beyond every coordinate inside the block, and the boundary position itself elsewhere.
   int cellExact(float x) const {
-    const int k = clampPixel(x * static_cast<float>(pixels) / size);
-    const std::uint8_t* p = meta + 4 * k;
-    return p[0] + (p[1] != 0 && x >= exactPosition(k) ? 1 : 0);
+    const auto k = static_cast<std::size_t>(pixelOf(x));
+    std::uint32_t e;
+    std::memcpy(&e, exact + 4 * k, sizeof e);
+    return meta[4 * k] + static_cast<int>(std::min(x, size) >= static_cast<float>((e - 1) & 0xffffffu) + 1.0f);
   }
 
   // Position (units) of the boundary held by metadata pixel k, heuristic: (k + f / 256) D / M.
   float boundaryHeuristic(int k) const {
-    return (static_cast<float>(k) + meta[4 * k + 1] * (1.0f / format::kFractionSteps)) * size /
-           static_cast<float>(pixels);
+    return static_cast<float>(k * format::kFractionSteps + meta[4 * k + 1]) * stepSize;
   }
   float exactPosition(int k) const {
     const std::uint8_t* e = exact + 4 * k;
@@ -93,11 +123,6 @@ struct AxisView {
   // The pixel holding the boundary after the one held by pixel k, in direction dir.
   int nextBoundaryPixel(int k, int dir) const {
     return dir > 0 ? k + meta[4 * k + 3] : k - meta[4 * k + 2];
-  }
-
-  int clampPixel(float t) const {
-    const int k = static_cast<int>(t);
-    return k < 0 ? 0 : (k >= pixels ? pixels - 1 : k);
   }
 };
 
