@@ -12,6 +12,7 @@ int main(int argc, char** argv) {
   int exitCode = nut::cli::kOk;
   nut::cli::addInfoCommand(app, exitCode);
   nut::cli::addValidateCommand(app, exitCode);
+  nut::cli::addRenderCommand(app, exitCode);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp&) {

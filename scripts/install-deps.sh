@@ -8,6 +8,8 @@ packages=(
   # core: PNG I/O, maths, CLI, JSON
   libopenimageio-dev openimageio-tools zlib1g-dev libglm-dev
   libcli11-dev nlohmann-json3-dev
+  # the mesh reference renderer: OBJ/MTL reading and Embree ray tracing
+  libtinyobjloader-dev libembree-dev libtbb-dev
   # tests, fuzzing and benchmarks
   libgtest-dev libbenchmark-dev libstb-dev clang-14 libclang-rt-14-dev
 )

@@ -51,6 +51,7 @@ glm::mat<3, 3, int> cubeRotationMatrix(int index) {
 }
 
 glm::dmat3 rotationMatrix(const Rotation& r) {
+  if (r.yaw == 0) return glm::dmat3(cubeRotationMatrix(r.cube));
   const double angle = 2.0 * std::numbers::pi * r.yaw / format::kYawSteps;
   const double c = std::cos(angle), s = std::sin(angle);
   // Right-handed rotation about +y: counter-clockwise seen from above. Columns are images of axes.

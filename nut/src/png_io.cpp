@@ -5,6 +5,7 @@
 #include <zlib.h>
 
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
@@ -68,7 +69,45 @@ Status checkPngStructure(const std::string& path) {
   }
 }
 
+// Writes bytes to a temporary sibling and renames it over `path`.
+Status writeAtomically(const std::string& path, const std::string& bytes) {
+  const std::filesystem::path target(path);
+  const std::filesystem::path temporary = temporaryPath(target);
+  {
+    std::ofstream out(temporary, std::ios::binary);
+    if (!out) return Error{path + ": cannot create the file"};
+    out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+    if (!out.flush()) {
+      std::error_code ignored;
+      std::filesystem::remove(temporary, ignored);
+      return Error{path + ": write failed"};
+    }
+  }
+  std::error_code error;
+  std::filesystem::rename(temporary, target, error);
+  if (error) {
+    std::filesystem::remove(temporary, error);
+    return Error{path + ": cannot rename the written file into place"};
+  }
+  return Ok{};
+}
+
 }  // namespace
+
+Status writePfm(const std::string& path, int width, int height, const std::vector<float>& values) {
+  if (width <= 0 || height <= 0 || values.size() != static_cast<std::size_t>(width) * static_cast<std::size_t>(height))
+    return Error{path + ": PFM size does not match its values"};
+  std::string bytes = "Pf\n" + std::to_string(width) + " " + std::to_string(height) + "\n-1.0\n";
+  const std::size_t header = bytes.size();
+  bytes.resize(header + values.size() * sizeof(float));
+  for (int y = 0; y < height; ++y)  // PFM stores the bottom row first
+    std::memcpy(&bytes[header + static_cast<std::size_t>(y) * static_cast<std::size_t>(width) * sizeof(float)],
+                &values[static_cast<std::size_t>(height - 1 - y) * static_cast<std::size_t>(width)],
+                static_cast<std::size_t>(width) * sizeof(float));
+  return writeAtomically(path, bytes);
+}
+
+Status writeTextFile(const std::string& path, const std::string& text) { return writeAtomically(path, text); }
 
 Status writePng(const std::string& path, const Image& image, const HniText& text) {
   if (image.width <= 0 || image.height <= 0) return Error{path + ": cannot write an empty image"};

@@ -7,6 +7,7 @@
 
 #include <cstdint>
 #include <string>
+#include <vector>
 
 #include <glm/vec3.hpp>
 
@@ -31,6 +32,13 @@ struct PngFile {
 
 // Writes an RGBA8 image. The PNG is compressed at the highest zlib level.
 Status writePng(const std::string& path, const Image& image, const HniText& text = {});
+
+// Writes a single-channel float image (e.g. depth) as a little-endian PFM, rows bottom to top as
+// the format wants; same temporary-file-and-rename rule.
+Status writePfm(const std::string& path, int width, int height, const std::vector<float>& values);
+
+// Writes a text file (JSON reports) with the same temporary-file-and-rename rule.
+Status writeTextFile(const std::string& path, const std::string& text);
 
 // Reads a PNG as RGBA8 (grey and RGB files gain channels; 16-bit files are refused). Errors name
 // the file.

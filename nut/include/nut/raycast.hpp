@@ -1,0 +1,106 @@
+// nut/raycast.hpp — the CPU reference ray caster over an encoded HNI (paper section 6).
+//
+// It reads the image through HniView with exactly the lookups the GLSL shader makes: NUT traversal
+// with one next-boundary query per step through the j numbers, redirection landing (record, ray
+// transform, lower header, landing cell), a fixed-size stack to return to parents, wrapping, the 69
+// solids, translucent cells that tint and continue, level of detail from visual summaries, and an
+// iteration cap. It computes in float, as the shader does; the exact path (exact_path.hpp) is the
+// double-precision ground truth it is tested against. docs/RENDERING.md defines the output.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include <glm/mat3x3.hpp>
+#include <glm/vec3.hpp>
+
+#include <nut/camera.hpp>
+#include <nut/hni_view.hpp>
+#include <nut/image.hpp>
+
+namespace nut {
+
+enum class Lookup { Heuristic, Exact };
+
+struct RayCastOptions {
+  Lookup lookup = Lookup::Heuristic;
+  // Stop descending into a redirection cell whose projected size is below this many pixels and
+  // use the visual summary of the face hit instead. 0 = full detail.
+  double lodPx = 0.0;
+  // Cell steps and landings per ray; a ray that reaches the cap ends with kCappedColour.
+  int maxIterations = 512;
+};
+
+// Levels of the traversal stack: deeper redirections are drawn as their visual summary.
+inline constexpr int kMaxStackDepth = 32;
+// The colour of a ray that reached the iteration cap (magenta: never a building colour).
+inline constexpr std::array<std::uint8_t, 3> kCappedColour{255, 0, 255};
+
+// What one ray found.
+struct RayResult {
+  bool hit = false;                 // an opaque surface (or LOD summary) was reached
+  double distanceM = 0.0;           // along the ray to that surface
+  glm::dvec3 normal{0.0};           // world unit normal there, facing the ray
+  std::array<std::uint8_t, 3> colour = kBackground;  // shaded, translucent tints composited
+  int iterations = 0;
+  bool capped = false;
+};
+
+// A prepared HNI: the image (kept by reference) and its block headers, decoded once.
+class HniRayCaster {
+ public:
+  // The image must be valid (validate()); originM is the world position of the root block origin.
+  HniRayCaster(const Image& image, const glm::dvec3& originM);
+
+  // World bounding box of the root block.
+  WorldBox bounds() const;
+
+  // One ray: world origin and unit direction; pixelAngle is the angle one pixel subtends (radians),
+  // used only for level of detail.
+  RayResult trace(const glm::dvec3& originM, const glm::dvec3& direction, double pixelAngle,
+                  const RayCastOptions& options) const;
+
+  // A block header decoded once, with its axis views (the shader re-reads these at each landing).
+  struct Block {
+    BlockHeader header;
+    std::array<AxisView, 3> axes;
+  };
+
+ private:
+  template <Lookup mode>
+  RayResult traceWith(const glm::dvec3& originM, const glm::dvec3& direction, double pixelAngle,
+                      const RayCastOptions& options) const;
+  int blockAt(TexelAddress header) const;
+
+  const Image& image_;
+  HniView view_;
+  glm::dvec3 originM_;
+  std::vector<Block> blocks_;
+  std::vector<int> blockByHeader_;  // 256 * v + u -> index into blocks_, or -1
+  int root_ = 0;
+  FileRecord file_;
+};
+
+struct RenderOutput {
+  Image colour;                      // RGBA8, alpha 255
+  std::vector<float> distanceM;      // per pixel, +infinity where nothing was hit
+  std::vector<float> windowDepth;    // per pixel in [0, 1], 1 where nothing was hit
+  std::vector<std::uint16_t> iterations;
+};
+
+struct RenderStats {
+  double seconds = 0;
+  double raysPerSecond = 0;
+  double iterationsMean = 0;
+  int iterationsMax = 0;
+  double cappedPct = 0;
+  int threads = 0;
+};
+
+// Renders every pixel of the camera's image with `threads` threads (0 = all cores), in 16x16 tiles
+// handed out in order; the output does not depend on the thread count.
+RenderOutput renderHni(const HniRayCaster& caster, const Camera& camera, const RayCastOptions& options,
+                       int threads = 0, RenderStats* stats = nullptr);
+
+}  // namespace nut

@@ -1,0 +1,356 @@
+// The CPU reference ray caster (paper section 6, Algorithm 1): NUT traversal and redirection
+// landing over the encoded image, in float like the shader. One Level per block instance on the
+// stack; each keeps the ray in the block's frame and, per axis, the current cell, its two
+// boundaries, the metadata pixels holding them and the ray parameter of the next boundary, so
+// that a step reads one metadata pixel (paper Figure 14a).
+#include <nut/raycast.hpp>
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <thread>
+
+#include <glm/geometric.hpp>
+#include <glm/matrix.hpp>
+
+#include <nut/hierarchy.hpp>
+#include <nut/solids.hpp>
+
+namespace nut {
+
+namespace {
+
+constexpr float kInfinity = std::numeric_limits<float>::infinity();
+
+struct Level {
+  int block = 0;
+  glm::vec3 o{0.0f}, d{0.0f};       // the ray in this block's frame, units (mm)
+  glm::mat3 toWorld{1.0f};          // rotation from this frame to the world
+  std::uint8_t wrap = 0;
+  float tExit = 0;                  // the level ends here (box or parent cell exit)
+  glm::ivec3 cell{0};
+  glm::vec3 lo{0.0f}, hi{0.0f};     // the cell's boundaries along each axis, within the tile
+  glm::ivec3 kLo{0}, kHi{0};        // metadata pixels holding them (-1 / M for the block faces)
+  glm::vec3 tile{0.0f};             // start of the current tile (multiple of D) on wrapped axes
+  glm::vec3 tNext{0.0f};            // ray parameter where the ray leaves the cell, per axis
+  int entryAxis = -1;               // axis of the face the ray entered the current cell through
+};
+
+template <Lookup mode>
+float boundaryAt(const AxisView& axis, int k) {
+  if (k < 0) return 0.0f;
+  if (k >= axis.pixels) return axis.size;
+  return mode == Lookup::Exact ? axis.exactPosition(k) : axis.boundaryHeuristic(k);
+}
+
+template <Lookup mode>
+int cellAt(const AxisView& axis, float x) {
+  return mode == Lookup::Exact ? axis.cellExact(x) : axis.cellHeuristic(x);
+}
+
+float exitParameter(const Level& L, int a) {
+  if (L.d[a] > 0) return (L.tile[a] + L.hi[a] - L.o[a]) / L.d[a];
+  if (L.d[a] < 0) return (L.tile[a] + L.lo[a] - L.o[a]) / L.d[a];
+  return kInfinity;
+}
+
+// Redirection landing (paper Figure 14b): clips [tStart, tLimit] by the block's box (axes without
+// wrapping) and finds the landing cell. Returns the landing parameter, or a negative value when
+// the ray misses the block inside that interval.
+template <Lookup mode>
+float land(Level& L, const HniRayCaster::Block& block, float tStart, float tLimit, int entryAxis) {
+  float t0 = tStart, t1 = tLimit;
+  L.entryAxis = entryAxis;
+  for (int a = 0; a < 3; ++a) {
+    if (L.wrap & (1 << a)) continue;
+    const float size = block.axes[static_cast<std::size_t>(a)].size;
+    if (L.d[a] == 0) {
+      if (L.o[a] < 0 || L.o[a] > size) return -1.0f;
+      continue;
+    }
+    float ta = -L.o[a] / L.d[a], tb = (size - L.o[a]) / L.d[a];
+    if (ta > tb) std::swap(ta, tb);
+    if (ta > t0) t0 = ta, L.entryAxis = a;
+    t1 = std::min(t1, tb);
+  }
+  if (!(t0 < t1)) return -1.0f;
+  L.tExit = t1;
+  for (int a = 0; a < 3; ++a) {
+    const AxisView& axis = block.axes[static_cast<std::size_t>(a)];
+    float x = L.o[a] + t0 * L.d[a];
+    L.tile[a] = (L.wrap & (1 << a)) ? std::floor(x / axis.size) * axis.size : 0.0f;
+    x -= L.tile[a];
+    // Probe a hair ahead along the ray, so that landing exactly on a boundary picks the cell the
+    // ray moves into.
+    const float nudge = std::max(1e-2f, std::abs(x) * 4e-7f);
+    const float probe = x + (L.d[a] > 0 ? nudge : (L.d[a] < 0 ? -nudge : 0.0f));
+    const int c = cellAt<mode>(axis, probe);
+    const int k = axis.pixelOf(probe);
+    L.cell[a] = c;
+    L.kLo[a] = c > 0 ? axis.boundaryPixelAhead(k, c, -1) : -1;
+    L.kHi[a] = c + 1 < axis.cells ? axis.boundaryPixelAhead(k, c, +1) : axis.pixels;
+    L.lo[a] = boundaryAt<mode>(axis, L.kLo[a]);
+    L.hi[a] = boundaryAt<mode>(axis, L.kHi[a]);
+    L.tNext[a] = exitParameter(L, a);
+  }
+  return t0;
+}
+
+// Steps into the neighbouring cell along axis a (one metadata fetch). Returns false when the ray
+// leaves a block along an axis without wrapping.
+template <Lookup mode>
+bool step(Level& L, const HniRayCaster::Block& block, int a) {
+  const AxisView& axis = block.axes[static_cast<std::size_t>(a)];
+  L.entryAxis = a;
+  if (L.d[a] > 0) {
+    if (++L.cell[a] == axis.cells) {
+      if (!(L.wrap & (1 << a))) return false;
+      L.cell[a] = 0;
+      L.tile[a] += axis.size;
+      L.kHi[a] = -1;  // the new cell starts at the block face
+    }
+    L.kLo[a] = L.kHi[a];
+    L.kHi[a] = L.cell[a] + 1 == axis.cells ? axis.pixels
+               : L.kLo[a] < 0             ? axis.boundaryPixelAhead(0, 0, +1)
+                                          : axis.nextBoundaryPixel(L.kLo[a], +1);
+  } else {
+    if (--L.cell[a] < 0) {
+      if (!(L.wrap & (1 << a))) return false;
+      L.cell[a] = axis.cells - 1;
+      L.tile[a] -= axis.size;
+      L.kLo[a] = axis.pixels;
+    }
+    L.kHi[a] = L.kLo[a];
+    L.kLo[a] = L.cell[a] == 0                ? -1
+               : L.kHi[a] >= axis.pixels     ? axis.boundaryPixelAhead(axis.pixels - 1, axis.cells - 1, -1)
+                                             : axis.nextBoundaryPixel(L.kHi[a], -1);
+  }
+  L.lo[a] = boundaryAt<mode>(axis, L.kLo[a]);
+  L.hi[a] = boundaryAt<mode>(axis, L.kHi[a]);
+  L.tNext[a] = exitParameter(L, a);
+  return true;
+}
+
+int argMin(const glm::vec3& v) { return v.x <= v.y ? (v.x <= v.z ? 0 : 2) : (v.y <= v.z ? 1 : 2); }
+
+glm::mat3 recordRotation(const RedirectionRecord& r) {
+  return glm::mat3(rotationMatrix(Rotation{r.cubeRotation, r.yaw}));
+}
+
+// Front-to-back compositing of translucent cells.
+struct Composite {
+  glm::dvec3 colour{0.0};
+  double transmittance = 1.0;
+  void add(const std::array<std::uint8_t, 3>& c, double alpha) {
+    colour += transmittance * alpha * glm::dvec3(c[0], c[1], c[2]);
+    transmittance *= 1.0 - alpha;
+  }
+  std::array<std::uint8_t, 3> finish(const std::array<std::uint8_t, 3>& behind) const {
+    const glm::dvec3 c = colour + transmittance * glm::dvec3(behind[0], behind[1], behind[2]);
+    return {static_cast<std::uint8_t>(std::lround(std::min(255.0, c.x))),
+            static_cast<std::uint8_t>(std::lround(std::min(255.0, c.y))),
+            static_cast<std::uint8_t>(std::lround(std::min(255.0, c.z)))};
+  }
+};
+
+}  // namespace
+
+HniRayCaster::HniRayCaster(const Image& image, const glm::dvec3& originM)
+    : image_(image), view_(image), originM_(originM), blockByHeader_(256 * 256, -1) {
+  file_ = view_.fileRecord();
+  for (int b = 0; b < file_.blockCount; ++b) {
+    const TexelAddress at = view_.blockAddress(file_, b);
+    Block block;
+    block.header = view_.header(at);
+    for (int a = 0; a < 3; ++a) block.axes[static_cast<std::size_t>(a)] = view_.axis(block.header, a);
+    blockByHeader_[static_cast<std::size_t>(at.v * 256 + at.u)] = static_cast<int>(blocks_.size());
+    blocks_.push_back(block);
+  }
+  root_ = blockAt(file_.root);
+}
+
+int HniRayCaster::blockAt(TexelAddress header) const {
+  return blockByHeader_[static_cast<std::size_t>(header.v * 256 + header.u)];
+}
+
+WorldBox HniRayCaster::bounds() const {
+  const glm::ivec3 size = blocks_[static_cast<std::size_t>(root_)].header.sizeUnits;
+  return {originM_, originM_ + glm::dvec3(size) * format::kMetresPerUnit};
+}
+
+RayResult HniRayCaster::trace(const glm::dvec3& originM, const glm::dvec3& direction, double pixelAngle,
+                              const RayCastOptions& options) const {
+  return options.lookup == Lookup::Exact ? traceWith<Lookup::Exact>(originM, direction, pixelAngle, options)
+                                         : traceWith<Lookup::Heuristic>(originM, direction, pixelAngle, options);
+}
+
+template <Lookup mode>
+RayResult HniRayCaster::traceWith(const glm::dvec3& originM, const glm::dvec3& direction, double pixelAngle,
+                                  const RayCastOptions& options) const {
+  RayResult result;
+  Composite composite;
+  std::array<Level, kMaxStackDepth> stack;
+  int top = 0;
+  Level& root = stack[0];
+  root.block = root_;
+  // The subtraction happens in double: world coordinates may be near 10^6 m (city origins).
+  root.o = glm::vec3((originM - originM_) / format::kMetresPerUnit);
+  root.d = glm::vec3(direction);
+  float t = land<mode>(root, blocks_[static_cast<std::size_t>(root_)], 0.0f, kInfinity, -1);
+  if (t < 0) return result;  // misses the root box: background
+  const float angle = static_cast<float>(pixelAngle);  // a cell of size s spans s / (t * angle) pixels
+  bool advance = false;
+  const auto finish = [&](float tHit, const glm::vec3& normalWorld, const std::array<std::uint8_t, 3>& colour) {
+    result.hit = true;
+    result.distanceM = tHit * format::kMetresPerUnit;
+    result.normal = glm::dvec3(normalWorld);
+    if (glm::dot(result.normal, direction) > 0) result.normal = -result.normal;
+    result.colour = composite.finish(colour);
+  };
+
+  while (true) {
+    Level& L = stack[static_cast<std::size_t>(top)];
+    const Block& block = blocks_[static_cast<std::size_t>(L.block)];
+    if (advance) {
+      // Leave the current cell through the nearest boundary, or leave the level.
+      const int a = argMin(L.tNext);
+      const float tCross = L.tNext[a];
+      if (tCross >= L.tExit || !step<mode>(L, block, a)) {
+        if (top == 0) break;
+        t = L.tExit;
+        --top;
+        continue;  // the parent advances past the cell that held this level
+      }
+      t = std::max(t, tCross);
+      advance = false;
+      continue;
+    }
+    if (++result.iterations > options.maxIterations) {
+      result.capped = true;
+      result.colour = kCappedColour;
+      return result;
+    }
+    advance = true;
+    const float tCellExit = std::min(L.tNext[argMin(L.tNext)], L.tExit);
+    const std::uint8_t* texel = view_.cellTexel(block.header, L.cell);
+    const int g = texel[3];
+    if (g >= format::kCellFirstSolid) {
+      const glm::vec3 size = L.hi - L.lo;
+      const glm::vec3 org = (L.o - L.tile - L.lo) / size;
+      const glm::vec3 dir = L.d / size;
+      const Solid solid{static_cast<std::uint8_t>(g - format::kCellFirstSolid)};
+      const auto hit = intersectSolid<float>(solid, org, dir, t, tCellExit);
+      if (!hit) continue;
+      const Material m = view_.material(file_, texel[0] | texel[1] << 8);
+      const glm::vec3 normalWorld = glm::normalize(L.toWorld * glm::normalize(hit->normal / size));
+      const auto colour = shade({m.r, m.g, m.b}, glm::dvec3(normalWorld), direction);
+      if (m.opacity == 255) {
+        finish(hit->t, normalWorld, colour);
+        return result;
+      }
+      composite.add(colour, m.opacity / 255.0);
+      continue;
+    }
+    if (g != format::kCellRedirection) continue;
+
+    const RedirectionRecord record = view_.redirection({texel[0], texel[1]});
+    const int target = blockAt(record.target);
+    const glm::mat3 rotation = recordRotation(record);
+    const glm::vec3 cellSize = L.hi - L.lo;
+    const float projectedPx = std::max({cellSize.x, cellSize.y, cellSize.z}) / (std::max(t, 1.0f) * angle);
+    if (top + 1 == kMaxStackDepth || (options.lodPx > 0 && projectedPx < static_cast<float>(options.lodPx))) {
+      // Level of detail: the target's visual summary of the face the ray entered through.
+      glm::vec3 faceNormal = -glm::normalize(L.d);
+      if (L.entryAxis >= 0) faceNormal = glm::vec3(0.0f), faceNormal[L.entryAxis] = L.d[L.entryAxis] > 0 ? -1.0f : 1.0f;
+      const glm::vec3 inTarget = glm::transpose(rotation) * faceNormal;
+      const int axis = argMin(-glm::abs(inTarget));
+      const int side = 2 * axis + (inTarget[axis] > 0 ? 0 : 1);
+      const Rgba8 s = blocks_[static_cast<std::size_t>(target)].header.summary[static_cast<std::size_t>(side)];
+      const glm::vec3 normalWorld = L.toWorld * faceNormal;
+      const auto colour = shade({s.r, s.g, s.b}, glm::dvec3(normalWorld), direction);
+      if (s.a == 255) {
+        finish(t, normalWorld, colour);
+        return result;
+      }
+      composite.add(colour, s.a / 255.0);
+      continue;
+    }
+    Level& child = stack[static_cast<std::size_t>(top + 1)];
+    child.block = target;
+    const glm::mat3 toChild = glm::transpose(rotation);
+    const glm::vec3 offset(record.offsetUnits);
+    child.o = toChild * (L.o - L.tile - L.lo - offset);
+    child.d = toChild * L.d;
+    child.toWorld = L.toWorld * rotation;
+    child.wrap = record.wrap;
+    const float landed = land<mode>(child, blocks_[static_cast<std::size_t>(target)], t, tCellExit, -1);
+    if (landed < 0) continue;  // the sub-block does not reach into this part of the cell
+    if (child.entryAxis < 0 && L.entryAxis >= 0) {
+      // Entered through the parent cell's face: that face's axis in the child frame.
+      const glm::vec3 axisInChild = glm::abs(toChild[L.entryAxis]);
+      child.entryAxis = argMin(-axisInChild);
+    }
+    t = landed;
+    ++top;
+    advance = false;
+  }
+  result.colour = composite.finish(kBackground);
+  return result;
+}
+
+RenderOutput renderHni(const HniRayCaster& caster, const Camera& camera, const RayCastOptions& options, int threads,
+                       RenderStats* stats) {
+  const auto start = std::chrono::steady_clock::now();
+  RenderOutput out;
+  out.colour = Image(camera.width, camera.height);
+  const std::size_t pixels = static_cast<std::size_t>(camera.width) * static_cast<std::size_t>(camera.height);
+  out.distanceM.assign(pixels, kInfinity);
+  out.windowDepth.assign(pixels, 1.0f);
+  out.iterations.assign(pixels, 0);
+  const RayGenerator rays(camera);
+  const double pixelAngle = 2.0 * rays.tanHalfY / camera.height;
+  constexpr int kTile = 16;
+  const int tilesX = (camera.width + kTile - 1) / kTile, tilesY = (camera.height + kTile - 1) / kTile;
+  std::atomic<int> nextTile{0};
+  std::atomic<long long> cappedRays{0};
+  const auto work = [&] {
+    for (int tile = nextTile++; tile < tilesX * tilesY; tile = nextTile++) {
+      const int x0 = tile % tilesX * kTile, y0 = tile / tilesX * kTile;
+      for (int y = y0; y < std::min(y0 + kTile, camera.height); ++y)
+        for (int x = x0; x < std::min(x0 + kTile, camera.width); ++x) {
+          const glm::dvec3 dir = rays.direction(x, y);
+          const RayResult r = caster.trace(camera.eye, dir, pixelAngle, options);
+          const std::size_t i = static_cast<std::size_t>(y) * static_cast<std::size_t>(camera.width) + static_cast<std::size_t>(x);
+          std::uint8_t* p = out.colour.at(x, y);
+          p[0] = r.colour[0], p[1] = r.colour[1], p[2] = r.colour[2], p[3] = 255;
+          if (r.hit) {
+            out.distanceM[i] = static_cast<float>(r.distanceM);
+            out.windowDepth[i] = static_cast<float>(rays.windowDepth(r.distanceM, dir));
+          }
+          out.iterations[i] = static_cast<std::uint16_t>(std::min(r.iterations, 65535));
+          if (r.capped) ++cappedRays;
+        }
+    }
+  };
+  const int count = threads > 0 ? threads : std::max(1u, std::thread::hardware_concurrency());
+  std::vector<std::thread> pool;
+  for (int i = 1; i < count; ++i) pool.emplace_back(work);
+  work();
+  for (std::thread& th : pool) th.join();
+  if (stats) {
+    stats->seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    stats->raysPerSecond = static_cast<double>(pixels) / stats->seconds;
+    long long sum = 0;
+    int most = 0;
+    for (std::uint16_t it : out.iterations) sum += it, most = std::max(most, static_cast<int>(it));
+    stats->iterationsMean = static_cast<double>(sum) / static_cast<double>(pixels);
+    stats->iterationsMax = most;
+    stats->cappedPct = 100.0 * static_cast<double>(cappedRays) / static_cast<double>(pixels);
+    stats->threads = count;
+  }
+  return out;
+}
+
+}  // namespace nut
