@@ -1,0 +1,247 @@
+// bench/lookup_bench.cpp — the CPU analogue of the paper's Table 1 (Kuang et al. 2013, section
+// 3.2): the cost of one random-access lookup into a 3D NUT of n x n x n cells, n = 4 .. 64, by
+//   native     a uniform grid: per axis cell = x * (n / D), clamped and truncated, then the fetch
+//   heuristic  per axis nut::AxisView::cellHeuristic (one metadata pixel), then the fetch
+//   binary     per axis std::upper_bound over the interior boundaries (floats), then the fetch
+//   exact      per axis nut::AxisView::cellExact (metadata pixel + exact row), then the fetch
+// All four read the same RGBA8 data image ((n n) x n, z tiled along x: texel (cx + cz n, cy)) with
+// the same fetch code, for the same precomputed query points, and add every fetched texel to a
+// sum. One benchmark iteration is a batch of kQueries independent lookups: items_per_second reads
+// as lookups/s and `per_lookup` is the time of one lookup (throughput, as a GPU measures it).
+//
+// The native grid is computed like AxisView's pixel (AxisView::pixelOf): a per-axis scale
+// precomputed once, a float clamp, a truncation. It is as tuned as the NUT path, so the ratios
+// measure the metadata, not a difference in arithmetic.
+//
+// The NUT's cells have random integer-mm widths in [kMinWidth, kMaxWidth] (fixed seeds); its
+// metadata is built with nut::buildAxisIndex + nut::encodeAxisIndex and laid out like the HNI's
+// metadata region (256 pixels wide, RGBA8): axis a's metadata row at v = 2a, its exact row at
+// v = 2a + 1. The native grid spans the same D per axis. Results: docs/BENCHMARKS.md.
+#include <nut/format.hpp>
+#include <nut/metadata.hpp>
+
+#include <benchmark/benchmark.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <map>
+#include <memory>
+#include <random>
+#include <string>
+#include <vector>
+
+namespace {
+
+constexpr int kQueries = 1 << 16;
+constexpr int kSizes[] = {4, 8, 16, 32, 64};
+constexpr std::uint32_t kSeed = 20130721;
+constexpr int kMinWidth = 250;  // cell widths in mm: within a factor 4 of each other
+constexpr int kMaxWidth = 1000;
+constexpr int kRegionWidth = nut::format::kMetadataRegion;
+
+// mt19937's output sequence is fixed by the standard (the distributions' is not).
+int randomInt(std::mt19937& rng, int lo, int hi) {
+  return lo + static_cast<int>(rng() % static_cast<std::uint32_t>(hi - lo + 1));
+}
+float randomUnit(std::mt19937& rng) {  // [0, 1) in steps of 2^-24
+  return static_cast<float>(rng() >> 8) * (1.0f / 16777216.0f);
+}
+
+// The one texel fetch every method ends with: RGBA8 texel (u, v) of an image `width` texels wide.
+inline std::uint32_t fetchTexel(const std::uint8_t* image, int width, int u, int v) {
+  std::uint32_t texel;
+  const auto offset = static_cast<std::size_t>(static_cast<std::uint32_t>(v * width + u));
+  std::memcpy(&texel, image + 4 * offset, sizeof texel);
+  return texel;
+}
+
+// Native uniform grid, the same arithmetic as AxisView::pixelOf: x * (n / D) clamped in float
+// to [0, n) (max first, so a NaN coordinate lands on cell 0), then truncated.
+struct UniformAxis {
+  float scale = 0;     // n / D
+  float lastCell = 0;  // the largest float below n
+  int cell(float x) const { return static_cast<int>(std::min(lastCell, std::max(0.0f, x * scale))); }
+};
+
+// Binary search: the cell holding x is the number of interior boundaries b_1..b_{W-1} <= x
+// (clamped by construction).
+struct BoundaryAxis {
+  const float* interior = nullptr;
+  int count = 0;  // W - 1
+  int cell(float x) const {
+    return static_cast<int>(std::upper_bound(interior, interior + count, x) - interior);
+  }
+};
+
+// The library's lookups behind the same cell(x) interface.
+struct HeuristicAxis {
+  nut::AxisView view;
+  int cell(float x) const { return view.cellHeuristic(x); }
+};
+struct ExactAxis {
+  nut::AxisView view;
+  int cell(float x) const { return view.cellExact(x); }
+};
+
+// ---- The scene of one size n ------------------------------------------------------------------
+
+struct Query {
+  float x, y, z;
+};
+
+struct Scene {
+  int n = 0;
+  std::array<float, 3> size{};
+  std::array<int, 3> pixels{};
+  std::vector<std::uint8_t> metaRegion;  // kRegionWidth x 6 RGBA8
+  std::array<std::vector<float>, 3> interior;
+  std::array<UniformAxis, 3> native{};
+  std::array<HeuristicAxis, 3> heuristic{};
+  std::array<BoundaryAxis, 3> binary{};
+  std::array<ExactAxis, 3> exact{};
+  std::vector<std::uint8_t> data;  // (n n) x n RGBA8
+  std::vector<Query> queries;
+  double heuristicWrong = 0;  // fraction of per-axis heuristic answers that are not the exact cell
+};
+
+[[noreturn]] void fail(int n, const std::string& message) {
+  std::fprintf(stderr, "lookup_bench: n = %d: %s\n", n, message.c_str());
+  std::abort();
+}
+
+std::unique_ptr<Scene> buildScene(int n) {
+  auto scene = std::make_unique<Scene>();
+  Scene& s = *scene;
+  s.n = n;
+  s.metaRegion.assign(static_cast<std::size_t>(4 * kRegionWidth * 6), 0);
+  for (std::size_t a = 0; a < 3; ++a) {
+    // Random widths; a new draw in the (rare) case no metadata array of <= 256 pixels fits.
+    std::mt19937 rng(kSeed + static_cast<std::uint32_t>(3 * n) + static_cast<std::uint32_t>(a));
+    std::vector<std::int64_t> bounds;
+    nut::Result<nut::AxisIndex> index = nut::Error{"not built"};
+    for (int attempt = 0; attempt < 100 && !index; ++attempt) {
+      bounds.assign(1, 0);
+      for (int c = 0; c < n; ++c)
+        bounds.push_back(bounds.back() + randomInt(rng, kMinWidth, kMaxWidth));
+      index = nut::buildAxisIndex(bounds);
+    }
+    if (!index) fail(n, index.error().message);
+    const nut::AxisIndex& ix = *index;
+    std::uint8_t* metaRow = s.metaRegion.data() + 4 * kRegionWidth * (2 * a);
+    std::uint8_t* exactRow = metaRow + 4 * kRegionWidth;
+    nut::encodeAxisIndex(ix, metaRow, exactRow);
+    const float size = static_cast<float>(bounds.back());
+    s.size[a] = size;
+    s.pixels[a] = ix.pixels();
+    auto& inner = s.interior[a];
+    for (int m = 1; m < n; ++m) inner.push_back(static_cast<float>(bounds[static_cast<std::size_t>(m)]));
+    const nut::AxisView view = nut::AxisView::make(metaRow, exactRow, ix.pixels(), n, size);
+    s.native[a] = {.scale = static_cast<float>(n) / size,
+                   .lastCell = std::nextafter(static_cast<float>(n), 0.0f)};
+    s.heuristic[a] = {view};
+    s.binary[a] = {.interior = inner.data(), .count = n - 1};
+    s.exact[a] = {view};
+  }
+  std::mt19937 rng(kSeed);
+  s.data.resize(static_cast<std::size_t>(4) * n * n * n);
+  for (auto& byte : s.data) byte = static_cast<std::uint8_t>(rng() >> 24);
+  s.queries.resize(kQueries);
+  for (Query& q : s.queries) {
+    float* c[3] = {&q.x, &q.y, &q.z};
+    for (std::size_t a = 0; a < 3; ++a)
+      *c[a] = std::min(randomUnit(rng) * s.size[a], std::nextafter(s.size[a], 0.0f));
+  }
+  // Correctness: every exact lookup agrees with the binary search; a heuristic answer that differs
+  // is one cell off, for a coordinate within D / (512 M) of the boundary between the two cells
+  // (plus a little float rounding of x * 256 M / D); the native cell is in [0, n).
+  long wrong = 0;
+  for (const Query& q : s.queries) {
+    const float c[3] = {q.x, q.y, q.z};
+    for (std::size_t a = 0; a < 3; ++a) {
+      const float x = c[a];
+      const int truth = s.binary[a].cell(x);
+      if (s.exact[a].cell(x) != truth) fail(n, "an exact lookup disagrees with binary search");
+      const int native = s.native[a].cell(x);
+      if (native < 0 || native >= n) fail(n, "a native cell is outside the grid");
+      const int h = s.heuristic[a].cell(x);
+      if (h == truth) continue;
+      if (std::abs(h - truth) != 1) fail(n, "a heuristic lookup is more than one cell off");
+      const float boundary = s.interior[a][static_cast<std::size_t>(std::min(h, truth))];
+      const float bound = s.size[a] / (512.0f * static_cast<float>(s.pixels[a]));
+      if (std::abs(x - boundary) > 1.01f * bound) fail(n, "a heuristic lookup exceeds its error bound");
+      ++wrong;
+    }
+  }
+  s.heuristicWrong = static_cast<double>(wrong) / (3.0 * kQueries);
+  return scene;
+}
+
+const Scene& scene(int n) {
+  static std::map<int, std::unique_ptr<Scene>> scenes;
+  auto& slot = scenes[n];
+  if (!slot) slot = buildScene(n);
+  return *slot;
+}
+
+// The timed loop: kQueries lookups, each three per-axis cell lookups and one data fetch.
+template <class Axis>
+void runLookups(benchmark::State& state, const Scene& s, const std::array<Axis, 3>& axes) {
+  const std::uint8_t* data = s.data.data();
+  const int n = s.n;
+  const int width = n * n;
+  const Axis ax = axes[0], ay = axes[1], az = axes[2];
+  for (auto _ : state) {
+    std::uint32_t sum = 0;
+    for (const Query& q : s.queries) {
+      const int cx = ax.cell(q.x), cy = ay.cell(q.y), cz = az.cell(q.z);
+      sum += fetchTexel(data, width, cx + cz * n, cy);
+    }
+    benchmark::DoNotOptimize(sum);
+  }
+  state.SetItemsProcessed(state.iterations() * kQueries);
+  state.counters["per_lookup"] = benchmark::Counter(
+      kQueries, benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
+}
+
+enum class Method { kNative, kHeuristic, kBinary, kExact };
+
+void lookupBenchmark(benchmark::State& state, Method method, int n) {
+  const Scene& s = scene(n);
+  switch (method) {
+    case Method::kNative: runLookups(state, s, s.native); break;
+    case Method::kHeuristic: runLookups(state, s, s.heuristic); break;
+    case Method::kBinary: runLookups(state, s, s.binary); break;
+    case Method::kExact: runLookups(state, s, s.exact); break;
+  }
+  // M: the metadata array's size, mean over the three axes; wrong_cells: the fraction of
+  // per-axis heuristic answers that differ from the exact cell (within D / (512 M) of a boundary).
+  if (method == Method::kHeuristic || method == Method::kExact)
+    state.counters["M"] = (s.pixels[0] + s.pixels[1] + s.pixels[2]) / 3.0;
+  if (method == Method::kHeuristic) state.counters["wrong_cells"] = s.heuristicWrong;
+}
+
+[[maybe_unused]] const bool kRegistered = [] {
+  struct Entry {
+    const char* name;
+    Method method;
+  };
+  const Entry entries[] = {
+      {"native", Method::kNative},
+      {"heuristic", Method::kHeuristic},
+      {"binary", Method::kBinary},
+      {"exact", Method::kExact},
+  };
+  for (const Entry& e : entries)
+    for (int n : kSizes)
+      benchmark::RegisterBenchmark(("BM_Lookup/" + std::string(e.name) + "/" + std::to_string(n)).c_str(),
+                                   lookupBenchmark, e.method, n);
+  return true;
+}();
+
+}  // namespace
