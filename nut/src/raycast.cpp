@@ -24,18 +24,20 @@ namespace {
 
 constexpr float kInfinity = std::numeric_limits<float>::infinity();
 
+// Members are set by land() before use: no initialisers, so that the per-ray stack costs nothing
+// to create.
 struct Level {
-  int block = 0;
-  glm::vec3 o{0.0f}, d{0.0f};       // the ray in this block's frame, units (mm)
-  glm::mat3 toWorld{1.0f};          // rotation from this frame to the world
-  std::uint8_t wrap = 0;
-  float tExit = 0;                  // the level ends here (box or parent cell exit)
-  glm::ivec3 cell{0};
-  glm::vec3 lo{0.0f}, hi{0.0f};     // the cell's boundaries along each axis, within the tile
-  glm::ivec3 kLo{0}, kHi{0};        // metadata pixels holding them (-1 / M for the block faces)
-  glm::vec3 tile{0.0f};             // start of the current tile (multiple of D) on wrapped axes
-  glm::vec3 tNext{0.0f};            // ray parameter where the ray leaves the cell, per axis
-  int entryAxis = -1;               // axis of the face the ray entered the current cell through
+  int block;
+  glm::vec3 o, d;        // the ray in this block's frame, units (mm)
+  glm::mat3 toWorld;     // rotation from this frame to the world
+  std::uint8_t wrap;
+  float tExit;           // the level ends here (box or parent cell exit)
+  glm::ivec3 cell;
+  glm::vec3 lo, hi;      // the cell's boundaries along each axis, within the tile
+  glm::ivec3 kLo, kHi;   // metadata pixels holding them (-1 / M for the block faces)
+  glm::vec3 tile;        // start of the current tile (multiple of D) on wrapped axes
+  glm::vec3 tNext;       // ray parameter where the ray leaves the cell, per axis
+  int entryAxis;         // axis of the face the ray entered the current cell through
 };
 
 template <Lookup mode>
@@ -195,6 +197,8 @@ RayResult HniRayCaster::traceWith(const glm::dvec3& originM, const glm::dvec3& d
   int top = 0;
   Level& root = stack[0];
   root.block = root_;
+  root.toWorld = glm::mat3(1.0f);
+  root.wrap = 0;
   // The subtraction happens in double: world coordinates may be near 10^6 m (city origins).
   root.o = glm::vec3((originM - originM_) / format::kMetresPerUnit);
   root.d = glm::vec3(direction);
