@@ -11,5 +11,8 @@ enum ExitCode { kOk = 0, kInvalid = 1, kUsage = 1, kUnreadable = 2 };
 void addInfoCommand(CLI::App& app, int& exitCode);
 void addValidateCommand(CLI::App& app, int& exitCode);
 void addRenderCommand(CLI::App& app, int& exitCode);
+void addExportMeshCommand(CLI::App& app, int& exitCode);
+void addRenderMeshCommand(CLI::App& app, int& exitCode);
+void addCompareCommand(CLI::App& app, int& exitCode);
 
 }  // namespace nut::cli

@@ -13,6 +13,9 @@ int main(int argc, char** argv) {
   nut::cli::addInfoCommand(app, exitCode);
   nut::cli::addValidateCommand(app, exitCode);
   nut::cli::addRenderCommand(app, exitCode);
+  nut::cli::addExportMeshCommand(app, exitCode);
+  nut::cli::addRenderMeshCommand(app, exitCode);
+  nut::cli::addCompareCommand(app, exitCode);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp&) {

@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 
 #include <nut/hni.hpp>
+#include <nut/mesh_export.hpp>
 #include <nut/png_io.hpp>
 #include <nut/raycast.hpp>
 
@@ -35,7 +36,14 @@ int run(const RenderOptions& o) {
     return kInvalid;
   }
   const HniRayCaster caster(png->image, png->text.originM);
-  auto camera = o.camera.resolve(caster.bounds());
+  // The default camera fits the solid content, as `nut render-mesh` fits the exported mesh.
+  auto hierarchy = decode(png->image);
+  auto bounds = hierarchy ? contentBounds(*hierarchy, png->text.originM) : Result<WorldBox>(hierarchy.error());
+  if (!bounds) {
+    std::fprintf(stderr, "error: %s: %s\n", o.input.c_str(), bounds.error().message.c_str());
+    return kInvalid;
+  }
+  auto camera = o.camera.resolve(*bounds);
   if (!camera) {
     std::fprintf(stderr, "error: %s\n", camera.error().message.c_str());
     return kUsage;

@@ -3,6 +3,7 @@
 // packer put them. Records addressed with 8 bits are kept inside the 256x256 metadata region.
 #include <nut/hni.hpp>
 
+#include <cmath>
 #include <map>
 #include <string>
 #include <tuple>
@@ -91,7 +92,12 @@ Result<Image> compile(const Hierarchy& h, const CompileOptions& options) {
       for (std::size_t i = 1; i < bounds.size(); ++i)
         if (bounds[i] <= bounds[i - 1])
           return Error{axisWhere + ": cell " + std::to_string(i - 1) + " is narrower than 1 mm"};
-      auto index = buildAxisIndex(bounds);
+      const double tolerance = options.heuristicToleranceM / format::kMetresPerUnit;
+      const int minPixels = tolerance > 0 ? static_cast<int>(std::min<double>(
+                                                format::kMaxMetadataPixels,
+                                                std::ceil(static_cast<double>(bounds.back()) / (512.0 * tolerance))))
+                                          : 1;
+      auto index = buildAxisIndex(bounds, minPixels);
       if (!index) return Error{axisWhere + ": " + index.error().message};
       plans[b].axes[static_cast<std::size_t>(a)] = std::move(*index);
     }

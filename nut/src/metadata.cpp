@@ -63,13 +63,15 @@ std::optional<AxisIndex> tryPixels(std::span<const std::int64_t> bounds, int pix
 
 }  // namespace
 
-Result<AxisIndex> buildAxisIndex(std::span<const std::int64_t> boundsUnits) {
+Result<AxisIndex> buildAxisIndex(std::span<const std::int64_t> boundsUnits, int minPixels) {
   const int cells = static_cast<int>(boundsUnits.size()) - 1;
   if (cells < 1) return Error{"no cells"};
   if (cells > format::kMaxCellsPerAxis)
     return Error{std::to_string(cells) + " cells exceed the limit of " +
                  std::to_string(format::kMaxCellsPerAxis)};
-  for (int pixels = cells; pixels <= format::kMaxMetadataPixels; ++pixels)
+  for (int pixels = std::max(cells, minPixels); pixels <= format::kMaxMetadataPixels; ++pixels)
+    if (auto index = tryPixels(boundsUnits, pixels)) return std::move(*index);
+  for (int pixels = cells; pixels < std::min(minPixels, format::kMaxMetadataPixels + 1); ++pixels)
     if (auto index = tryPixels(boundsUnits, pixels)) return std::move(*index);
   std::int64_t narrowest = boundsUnits.back(), widest = 0;
   for (std::size_t m = 1; m < boundsUnits.size(); ++m) {

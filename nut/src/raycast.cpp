@@ -37,8 +37,17 @@ struct Level {
   glm::ivec3 kLo, kHi;   // metadata pixels holding them (-1 / M for the block faces)
   glm::vec3 tile;        // start of the current tile (multiple of D) on wrapped axes
   glm::vec3 tNext;       // ray parameter where the ray leaves the cell, per axis
-  int entryAxis;         // axis of the face the ray entered the current cell through
+  // World normal of the face through which the ray entered the visible part of the current cell:
+  // a cell boundary, the block's box, or (inherited at landing) a clipping ancestor cell's face.
+  glm::vec3 entryNormal;
 };
+
+// The face normal, in the level's frame, of a boundary perpendicular to axis a met by the ray.
+glm::vec3 faceNormal(const glm::vec3& d, int a) {
+  glm::vec3 n(0.0f);
+  n[a] = d[a] > 0 ? -1.0f : 1.0f;
+  return n;
+}
 
 template <Lookup mode>
 float boundaryAt(const AxisView& axis, int k) {
@@ -60,11 +69,12 @@ float exitParameter(const Level& L, int a) {
 
 // Redirection landing (paper Figure 14b): clips [tStart, tLimit] by the block's box (axes without
 // wrapping) and finds the landing cell. Returns the landing parameter, or a negative value when
-// the ray misses the block inside that interval.
+// the ray misses the block inside that interval. entryNormal is the world normal of the face the
+// ray crossed at tStart; the block's own box face replaces it when the box starts later.
 template <Lookup mode>
-float land(Level& L, const HniRayCaster::Block& block, float tStart, float tLimit, int entryAxis) {
+float land(Level& L, const HniRayCaster::Block& block, float tStart, float tLimit, const glm::vec3& entryNormal) {
   float t0 = tStart, t1 = tLimit;
-  L.entryAxis = entryAxis;
+  L.entryNormal = entryNormal;
   for (int a = 0; a < 3; ++a) {
     if (L.wrap & (1 << a)) continue;
     const float size = block.axes[static_cast<std::size_t>(a)].size;
@@ -74,22 +84,24 @@ float land(Level& L, const HniRayCaster::Block& block, float tStart, float tLimi
     }
     float ta = -L.o[a] / L.d[a], tb = (size - L.o[a]) / L.d[a];
     if (ta > tb) std::swap(ta, tb);
-    if (ta > t0) t0 = ta, L.entryAxis = a;
+    if (ta > t0) t0 = ta, L.entryNormal = L.toWorld * faceNormal(L.d, a);
     t1 = std::min(t1, tb);
   }
   if (!(t0 < t1)) return -1.0f;
   L.tExit = t1;
+  // The landing cell is looked up a few float ulps past t0 (never past the middle of the
+  // interval): the transform into this frame carries that much rounding, and a cell the ray would
+  // cross for less than it is an artefact of rounding (the parent's clip face and a boundary of
+  // this block that coincide), not geometry. The ray is still processed from t0.
+  const float scale = std::abs(t0) + std::max({std::abs(L.o.x), std::abs(L.o.y), std::abs(L.o.z)});
+  const float tProbe = t0 + std::min(4.0f * std::numeric_limits<float>::epsilon() * scale, 0.5f * (t1 - t0));
   for (int a = 0; a < 3; ++a) {
     const AxisView& axis = block.axes[static_cast<std::size_t>(a)];
-    float x = L.o[a] + t0 * L.d[a];
+    float x = L.o[a] + tProbe * L.d[a];
     L.tile[a] = (L.wrap & (1 << a)) ? std::floor(x / axis.size) * axis.size : 0.0f;
     x -= L.tile[a];
-    // Probe a hair ahead along the ray, so that landing exactly on a boundary picks the cell the
-    // ray moves into.
-    const float nudge = std::max(1e-2f, std::abs(x) * 4e-7f);
-    const float probe = x + (L.d[a] > 0 ? nudge : (L.d[a] < 0 ? -nudge : 0.0f));
-    const int c = cellAt<mode>(axis, probe);
-    const int k = axis.pixelOf(probe);
+    const int c = cellAt<mode>(axis, x);
+    const int k = axis.pixelOf(x);
     L.cell[a] = c;
     L.kLo[a] = c > 0 ? axis.boundaryPixelAhead(k, c, -1) : -1;
     L.kHi[a] = c + 1 < axis.cells ? axis.boundaryPixelAhead(k, c, +1) : axis.pixels;
@@ -105,7 +117,7 @@ float land(Level& L, const HniRayCaster::Block& block, float tStart, float tLimi
 template <Lookup mode>
 bool step(Level& L, const HniRayCaster::Block& block, int a) {
   const AxisView& axis = block.axes[static_cast<std::size_t>(a)];
-  L.entryAxis = a;
+  L.entryNormal = L.toWorld * faceNormal(L.d, a);
   if (L.d[a] > 0) {
     if (++L.cell[a] == axis.cells) {
       if (!(L.wrap & (1 << a))) return false;
@@ -202,7 +214,8 @@ RayResult HniRayCaster::traceWith(const glm::dvec3& originM, const glm::dvec3& d
   // The subtraction happens in double: world coordinates may be near 10^6 m (city origins).
   root.o = glm::vec3((originM - originM_) / format::kMetresPerUnit);
   root.d = glm::vec3(direction);
-  float t = land<mode>(root, blocks_[static_cast<std::size_t>(root_)], 0.0f, kInfinity, -1);
+  // A camera inside the root box sees what is in front of it: the entry "face" faces the ray.
+  float t = land<mode>(root, blocks_[static_cast<std::size_t>(root_)], 0.0f, kInfinity, -glm::vec3(direction));
   if (t < 0) return result;  // misses the root box: background
   const float angle = static_cast<float>(pixelAngle);  // a cell of size s spans s / (t * angle) pixels
   bool advance = false;
@@ -238,6 +251,7 @@ RayResult HniRayCaster::traceWith(const glm::dvec3& originM, const glm::dvec3& d
     }
     advance = true;
     const float tCellExit = std::min(L.tNext[argMin(L.tNext)], L.tExit);
+    if (!(tCellExit > t)) continue;  // touched, not entered (landing on a boundary moving away)
     const std::uint8_t* texel = view_.cellTexel(block.header, L.cell);
     const int g = texel[3];
     if (g >= format::kCellFirstSolid) {
@@ -248,7 +262,10 @@ RayResult HniRayCaster::traceWith(const glm::dvec3& originM, const glm::dvec3& d
       const auto hit = intersectSolid<float>(solid, org, dir, t, tCellExit);
       if (!hit) continue;
       const Material m = view_.material(file_, texel[0] | texel[1] << 8);
-      const glm::vec3 normalWorld = glm::normalize(L.toWorld * glm::normalize(hit->normal / size));
+      // A hit where the ray enters the cell's visible part is on that face, which may be a cell
+      // boundary, a box face or the face of an ancestor cell that clips this block.
+      const glm::vec3 normalWorld =
+          hit->t == t ? L.entryNormal : glm::normalize(L.toWorld * glm::normalize(hit->normal / size));
       const auto colour = shade({m.r, m.g, m.b}, glm::dvec3(normalWorld), direction);
       if (m.opacity == 255) {
         finish(hit->t, normalWorld, colour);
@@ -266,13 +283,11 @@ RayResult HniRayCaster::traceWith(const glm::dvec3& originM, const glm::dvec3& d
     const float projectedPx = std::max({cellSize.x, cellSize.y, cellSize.z}) / (std::max(t, 1.0f) * angle);
     if (top + 1 == kMaxStackDepth || (options.lodPx > 0 && projectedPx < static_cast<float>(options.lodPx))) {
       // Level of detail: the target's visual summary of the face the ray entered through.
-      glm::vec3 faceNormal = -glm::normalize(L.d);
-      if (L.entryAxis >= 0) faceNormal = glm::vec3(0.0f), faceNormal[L.entryAxis] = L.d[L.entryAxis] > 0 ? -1.0f : 1.0f;
-      const glm::vec3 inTarget = glm::transpose(rotation) * faceNormal;
+      const glm::vec3 normalWorld = L.entryNormal;
+      const glm::vec3 inTarget = glm::transpose(L.toWorld * rotation) * normalWorld;
       const int axis = argMin(-glm::abs(inTarget));
       const int side = 2 * axis + (inTarget[axis] > 0 ? 0 : 1);
       const Rgba8 s = blocks_[static_cast<std::size_t>(target)].header.summary[static_cast<std::size_t>(side)];
-      const glm::vec3 normalWorld = L.toWorld * faceNormal;
       const auto colour = shade({s.r, s.g, s.b}, glm::dvec3(normalWorld), direction);
       if (s.a == 255) {
         finish(t, normalWorld, colour);
@@ -289,13 +304,8 @@ RayResult HniRayCaster::traceWith(const glm::dvec3& originM, const glm::dvec3& d
     child.d = toChild * L.d;
     child.toWorld = L.toWorld * rotation;
     child.wrap = record.wrap;
-    const float landed = land<mode>(child, blocks_[static_cast<std::size_t>(target)], t, tCellExit, -1);
+    const float landed = land<mode>(child, blocks_[static_cast<std::size_t>(target)], t, tCellExit, L.entryNormal);
     if (landed < 0) continue;  // the sub-block does not reach into this part of the cell
-    if (child.entryAxis < 0 && L.entryAxis >= 0) {
-      // Entered through the parent cell's face: that face's axis in the child frame.
-      const glm::vec3 axisInChild = glm::abs(toChild[L.entryAxis]);
-      child.entryAxis = argMin(-axisInChild);
-    }
     t = landed;
     ++top;
     advance = false;

@@ -12,6 +12,11 @@ namespace nut {
 struct CompileOptions {
   // The packer tries image widths from the widest record up to this (paper 4.4: 256).
   int maxSearchWidth = format::kMaxSearchWidth;
+  // Metadata arrays get at least the pixels that keep the heuristic lookup's error bound
+  // D / (512 M) within this many metres (up to the format's 256 pixels); 0 = the fewest pixels.
+  // The paper uses the fewest; then a 22 m facade of three cells has M = 3 and boundaries up to
+  // 15 mm off, which shows as one-pixel shifts of whole sub-blocks at street distances.
+  double heuristicToleranceM = 0.002;
 };
 
 // Encodes every block of h (reachable or not) with its headers, metadata arrays, data components,

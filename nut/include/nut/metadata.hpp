@@ -50,9 +50,10 @@ struct AxisIndex {
 };
 
 // Builds the metadata array for boundaries b_0..b_W in units (b_0 = 0, strictly increasing,
-// b_W <= 2^24 - 1). Fails when no M <= 256 works; the message says why (the caller adds which
-// block and axis).
-Result<AxisIndex> buildAxisIndex(std::span<const std::int64_t> boundsUnits);
+// b_W <= 2^24 - 1): the smallest valid M that is at least minPixels (a larger M lowers the
+// heuristic error bound D / (512 M)), or the smallest valid M at all when none of those works.
+// Fails when no M <= 256 works; the message says why (the caller adds which block and axis).
+Result<AxisIndex> buildAxisIndex(std::span<const std::int64_t> boundsUnits, int minPixels = 1);
 
 // Read-only view of one axis's metadata as stored in an HNI: two rows of RGBA8 pixels.
 // Lookups are branch-free: a data-dependent branch on "does this pixel hold a boundary" is a coin

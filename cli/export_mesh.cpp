@@ -1,0 +1,78 @@
+// `nut export-mesh IN.png -o OUT.obj`: the HNI's solid as a triangle mesh (OBJ + MTL), so that any
+// mesh tool can show it or compare against it. The geometry rules are nut/mesh_export.hpp.
+#include <algorithm>
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <nut/hni.hpp>
+#include <nut/mesh_export.hpp>
+#include <nut/png_io.hpp>
+
+#include "commands.hpp"
+
+namespace nut::cli {
+
+namespace {
+
+struct ExportMeshOptions {
+  std::string input, output;
+  MeshExportOptions mesh;
+};
+
+int run(const ExportMeshOptions& o) {
+  auto png = readPng(o.input);
+  if (!png) {
+    std::fprintf(stderr, "error: %s\n", png.error().message.c_str());
+    return kUnreadable;
+  }
+  auto hierarchy = decode(png->image);  // validates first
+  if (!hierarchy) {
+    std::fprintf(stderr, "error: %s: invalid HNI: %s\n", o.input.c_str(), hierarchy.error().message.c_str());
+    return kInvalid;
+  }
+  auto mesh = exportMesh(*hierarchy, png->text.originM, o.mesh);
+  if (!mesh) {
+    std::fprintf(stderr, "error: %s: %s\n", o.input.c_str(), mesh.error().message.c_str());
+    return kInvalid;
+  }
+  if (Status s = writeObj(o.output, *mesh, hierarchy->materials); !s) {
+    std::fprintf(stderr, "error: %s\n", s.error().message.c_str());
+    return kUnreadable;
+  }
+  std::vector<bool> used(hierarchy->materials.size(), false);
+  for (std::uint16_t m : mesh->triangleMaterial) used[m] = true;
+  std::fprintf(stderr, "export-mesh: wrote %s (%zu triangles, %zu vertices, %zu materials used, tolerance %g m)\n",
+               o.output.c_str(), mesh->triangles.size(), mesh->positions.size(),
+               static_cast<std::size_t>(std::count(used.begin(), used.end(), true)), o.mesh.toleranceM);
+  return kOk;
+}
+
+}  // namespace
+
+void addExportMeshCommand(CLI::App& app, int& exitCode) {
+  auto o = std::make_shared<ExportMeshOptions>();
+  CLI::App* cmd = app.add_subcommand("export-mesh", "Export an HNI's solid cells as a triangle mesh (OBJ + MTL)");
+  cmd->add_option("input", o->input, "HNI image (PNG)")->required();
+  cmd->add_option("-o,--output", o->output, "Output mesh (OBJ); the materials go beside it as .mtl")->required();
+  // CLI::PositiveNumber's message prints the whole double range; say it plainly.
+  const auto positive = [](const std::string& text) {
+    char* end = nullptr;
+    const double value = std::strtod(text.c_str(), &end);
+    return *end == '\0' && value > 0 ? std::string() : "must be a positive number, got " + text;
+  };
+  cmd->add_option("--tolerance", o->mesh.toleranceM,
+                  "Largest distance between a curved surface and its triangles (metres)")
+      ->default_val(o->mesh.toleranceM)
+      ->check(positive);
+  cmd->add_option("--max-triangles", o->mesh.maxTriangles, "Fail rather than write more triangles than this")
+      ->default_val(o->mesh.maxTriangles)
+      ->check(positive);
+  cmd->footer("Example:\n  nut export-mesh samples/hni/building.png -o building.obj --tolerance 0.002");
+  cmd->callback([o, &exitCode] { exitCode = run(*o); });
+}
+
+}  // namespace nut::cli
