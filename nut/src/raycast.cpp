@@ -29,6 +29,7 @@ constexpr float kInfinity = std::numeric_limits<float>::infinity();
 struct Level {
   int block;
   glm::vec3 o, d;        // the ray in this block's frame, units (mm)
+  glm::vec3 invD;        // 1 / d: the traversal multiplies instead of dividing
   glm::mat3 toWorld;     // rotation from this frame to the world
   std::uint8_t wrap;
   float tExit;           // the level ends here (box or parent cell exit)
@@ -61,10 +62,15 @@ int cellAt(const AxisView& axis, float x) {
   return mode == Lookup::Exact ? axis.cellExact(x) : axis.cellHeuristic(x);
 }
 
-float exitParameter(const Level& L, int a) {
-  if (L.d[a] > 0) return (L.tile[a] + L.hi[a] - L.o[a]) / L.d[a];
-  if (L.d[a] < 0) return (L.tile[a] + L.lo[a] - L.o[a]) / L.d[a];
+inline float exitParameter(const Level& L, int a) {
+  if (L.d[a] > 0) return (L.tile[a] + L.hi[a] - L.o[a]) * L.invD[a];
+  if (L.d[a] < 0) return (L.tile[a] + L.lo[a] - L.o[a]) * L.invD[a];
   return kInfinity;
+}
+
+void setDirection(Level& L, const glm::vec3& d) {
+  L.d = d;
+  L.invD = 1.0f / d;  // +-infinity on zero components, which exitParameter never multiplies
 }
 
 // Redirection landing (paper Figure 14b): clips [tStart, tLimit] by the block's box (axes without
@@ -82,7 +88,7 @@ float land(Level& L, const HniRayCaster::Block& block, float tStart, float tLimi
       if (L.o[a] < 0 || L.o[a] > size) return -1.0f;
       continue;
     }
-    float ta = -L.o[a] / L.d[a], tb = (size - L.o[a]) / L.d[a];
+    float ta = -L.o[a] * L.invD[a], tb = (size - L.o[a]) * L.invD[a];
     if (ta > tb) std::swap(ta, tb);
     if (ta > t0) t0 = ta, L.entryNormal = L.toWorld * faceNormal(L.d, a);
     t1 = std::min(t1, tb);
@@ -149,10 +155,6 @@ bool step(Level& L, const HniRayCaster::Block& block, int a) {
 
 int argMin(const glm::vec3& v) { return v.x <= v.y ? (v.x <= v.z ? 0 : 2) : (v.y <= v.z ? 1 : 2); }
 
-glm::mat3 recordRotation(const RedirectionRecord& r) {
-  return glm::mat3(rotationMatrix(Rotation{r.cubeRotation, r.yaw}));
-}
-
 // Front-to-back compositing of translucent cells.
 struct Composite {
   glm::dvec3 colour{0.0};
@@ -183,6 +185,23 @@ HniRayCaster::HniRayCaster(const Image& image, const glm::dvec3& originM)
     blocks_.push_back(block);
   }
   root_ = blockAt(file_.root);
+  // Every redirection record a cell uses, decoded once.
+  redirectByRecord_.assign(256 * 256, -1);
+  for (const Block& block : blocks_) {
+    const glm::ivec3 n = block.header.cells;
+    for (int z = 0; z < n.z; ++z)
+      for (int y = 0; y < n.y; ++y)
+        for (int x = 0; x < n.x; ++x) {
+          const std::uint8_t* texel = view_.cellTexel(block.header, {x, y, z});
+          if (texel[3] != format::kCellRedirection) continue;
+          int& index = redirectByRecord_[static_cast<std::size_t>(texel[1] * 256 + texel[0])];
+          if (index >= 0) continue;
+          const RedirectionRecord r = view_.redirection({texel[0], texel[1]});
+          index = static_cast<int>(redirects_.size());
+          redirects_.push_back({glm::mat3(rotationMatrix(Rotation{r.cubeRotation, r.yaw})), glm::vec3(r.offsetUnits),
+                                blockAt(r.target), r.wrap});
+        }
+  }
 }
 
 int HniRayCaster::blockAt(TexelAddress header) const {
@@ -213,7 +232,7 @@ RayResult HniRayCaster::traceWith(const glm::dvec3& originM, const glm::dvec3& d
   root.wrap = 0;
   // The subtraction happens in double: world coordinates may be near 10^6 m (city origins).
   root.o = glm::vec3((originM - originM_) / format::kMetresPerUnit);
-  root.d = glm::vec3(direction);
+  setDirection(root, glm::vec3(direction));
   // A camera inside the root box sees what is in front of it: the entry "face" faces the ray.
   float t = land<mode>(root, blocks_[static_cast<std::size_t>(root_)], 0.0f, kInfinity, -glm::vec3(direction));
   if (t < 0) return result;  // misses the root box: background
@@ -276,9 +295,9 @@ RayResult HniRayCaster::traceWith(const glm::dvec3& originM, const glm::dvec3& d
     }
     if (g != format::kCellRedirection) continue;
 
-    const RedirectionRecord record = view_.redirection({texel[0], texel[1]});
-    const int target = blockAt(record.target);
-    const glm::mat3 rotation = recordRotation(record);
+    const Redirect& record = redirects_[static_cast<std::size_t>(redirectByRecord_[static_cast<std::size_t>(texel[1] * 256 + texel[0])])];
+    const int target = record.target;
+    const glm::mat3& rotation = record.rotation;
     const glm::vec3 cellSize = L.hi - L.lo;
     const float projectedPx = std::max({cellSize.x, cellSize.y, cellSize.z}) / (std::max(t, 1.0f) * angle);
     if (top + 1 == kMaxStackDepth || (options.lodPx > 0 && projectedPx < static_cast<float>(options.lodPx))) {
@@ -299,9 +318,8 @@ RayResult HniRayCaster::traceWith(const glm::dvec3& originM, const glm::dvec3& d
     Level& child = stack[static_cast<std::size_t>(top + 1)];
     child.block = target;
     const glm::mat3 toChild = glm::transpose(rotation);
-    const glm::vec3 offset(record.offsetUnits);
-    child.o = toChild * (L.o - L.tile - L.lo - offset);
-    child.d = toChild * L.d;
+    child.o = toChild * (L.o - L.tile - L.lo - record.offset);
+    setDirection(child, toChild * L.d);
     child.toWorld = L.toWorld * rotation;
     child.wrap = record.wrap;
     const float landed = land<mode>(child, blocks_[static_cast<std::size_t>(target)], t, tCellExit, L.entryNormal);

@@ -92,8 +92,8 @@ inline std::array<std::uint8_t, 3> shade(const std::array<std::uint8_t, 3>& albe
   if (glm::dot(normal, rayDirection) > 0) normal = -normal;
   const double light = kAmbient + (1.0 - kAmbient) * std::max(0.0, glm::dot(normal, kLightDirection));
   std::array<std::uint8_t, 3> out{};
-  for (int i = 0; i < 3; ++i)
-    out[static_cast<std::size_t>(i)] = static_cast<std::uint8_t>(std::lround(std::min(255.0, albedo[static_cast<std::size_t>(i)] * light)));
+  for (int i = 0; i < 3; ++i)  // round half up; the product is never negative
+    out[static_cast<std::size_t>(i)] = static_cast<std::uint8_t>(std::min(255.0, albedo[static_cast<std::size_t>(i)] * light) + 0.5);
   return out;
 }
 

@@ -68,6 +68,14 @@ class HniRayCaster {
   };
 
  private:
+  // A redirection record decoded once: the casters read it at every landing.
+  struct Redirect {
+    glm::mat3 rotation;  // target frame -> cell frame
+    glm::vec3 offset;    // units
+    int target = 0;      // index into blocks_
+    std::uint8_t wrap = 0;
+  };
+
   template <Lookup mode>
   RayResult traceWith(const glm::dvec3& originM, const glm::dvec3& direction, double pixelAngle,
                       const RayCastOptions& options) const;
@@ -78,6 +86,8 @@ class HniRayCaster {
   glm::dvec3 originM_;
   std::vector<Block> blocks_;
   std::vector<int> blockByHeader_;  // 256 * v + u -> index into blocks_, or -1
+  std::vector<Redirect> redirects_;
+  std::vector<int> redirectByRecord_;  // 256 * v + u -> index into redirects_, or -1
   int root_ = 0;
   FileRecord file_;
 };
