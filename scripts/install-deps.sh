@@ -10,6 +10,10 @@ packages=(
   libcli11-dev nlohmann-json3-dev
   # the mesh reference renderer: OBJ/MTL reading and Embree ray tracing
   libtinyobjloader-dev libembree-dev libtbb-dev
+  # GL back-ends: OSMesa (headless, CPU), EGL (headless GPU), GLFW windows under Xvfb
+  libosmesa6-dev libegl-dev libepoxy-dev libglfw3-dev xvfb xauth
+  # the mesh converter: mesh input and checks, glTF size comparison
+  libopenmesh-dev libcgal-dev libgmp-dev libmpfr-dev libmeshoptimizer-dev
   # tests, fuzzing and benchmarks
   libgtest-dev libbenchmark-dev libstb-dev clang-14 libclang-rt-14-dev
 )

@@ -52,8 +52,12 @@ glm::mat<3, 3, int> cubeRotationMatrix(int index) {
 
 glm::dmat3 rotationMatrix(const Rotation& r) {
   if (r.yaw == 0) return glm::dmat3(cubeRotationMatrix(r.cube));
+  // Quarter turns are exact, so that a sub-block turned by one fits its cell without a seam.
+  static constexpr double kQuarterCos[4] = {1, 0, -1, 0}, kQuarterSin[4] = {0, 1, 0, -1};
   const double angle = 2.0 * std::numbers::pi * r.yaw / format::kYawSteps;
-  const double c = std::cos(angle), s = std::sin(angle);
+  const bool quarter = r.yaw % (format::kYawSteps / 4) == 0;
+  const double c = quarter ? kQuarterCos[r.yaw / (format::kYawSteps / 4)] : std::cos(angle);
+  const double s = quarter ? kQuarterSin[r.yaw / (format::kYawSteps / 4)] : std::sin(angle);
   // Right-handed rotation about +y: counter-clockwise seen from above. Columns are images of axes.
   const glm::dmat3 yaw(glm::dvec3(c, 0, -s), glm::dvec3(0, 1, 0), glm::dvec3(s, 0, c));
   return yaw * glm::dmat3(cubeRotationMatrix(r.cube));

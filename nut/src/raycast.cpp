@@ -283,8 +283,11 @@ RayResult HniRayCaster::traceWith(const glm::dvec3& originM, const glm::dvec3& d
       const Material m = view_.material(file_, texel[0] | texel[1] << 8);
       // A hit where the ray enters the cell's visible part is on that face, which may be a cell
       // boundary, a box face or the face of an ancestor cell that clips this block.
-      const glm::vec3 normalWorld =
-          hit->t == t ? L.entryNormal : glm::normalize(L.toWorld * glm::normalize(hit->normal / size));
+      // A camera on or inside a solid sees it at distance 0, facing itself (as intersectSolid's
+      // origin-inside rule).
+      const glm::vec3 normalWorld = hit->t <= 0     ? -glm::vec3(direction)
+                                    : hit->t == t ? L.entryNormal
+                                                  : glm::normalize(L.toWorld * glm::normalize(hit->normal / size));
       const auto colour = shade({m.r, m.g, m.b}, glm::dvec3(normalWorld), direction);
       if (m.opacity == 255) {
         finish(hit->t, normalWorld, colour);

@@ -36,7 +36,7 @@ struct ExactSurface {
 
 struct ExactOptions {
   // Redirections nested deeper than this end the ray capped.
-  int maxDepth = kMaxStackDepth;
+  int maxDepth = kMaxStackDepth - 1;  // redirections below the root, as the caster's stack holds
   // Solids that the ray crosses for less than this (metres, first entry to last exit within the
   // cell) are ignored. 0 = none. Tests set it to a float tolerance to get the exact answer of a
   // scene perturbed by that much: the flat faces of inverse solids touch their solid only along a
