@@ -12,28 +12,13 @@
 #include <embree3/rtcore.h>
 #include <glm/geometric.hpp>
 
+#include <nut/render_loop.hpp>
+
 namespace nut::meshref {
 
 namespace {
 
 constexpr float kFloatInfinity = std::numeric_limits<float>::infinity();
-
-// Front-to-back compositing of translucent faces (docs/RENDERING.md, "Translucent cells").
-struct Composite {
-  glm::dvec3 colour{0.0};
-  double transmittance = 1.0;
-  void add(const std::array<std::uint8_t, 3>& c, double alpha) {
-    colour += transmittance * alpha * glm::dvec3(c[0], c[1], c[2]);
-    transmittance *= 1.0 - alpha;
-  }
-  std::array<std::uint8_t, 3> finish(const std::array<std::uint8_t, 3>& behind) const {
-    const glm::dvec3 c = colour + transmittance * glm::dvec3(behind[0], behind[1], behind[2]);
-    return {static_cast<std::uint8_t>(std::lround(std::min(255.0, c.x))),
-            static_cast<std::uint8_t>(std::lround(std::min(255.0, c.y))),
-            static_cast<std::uint8_t>(std::lround(std::min(255.0, c.z)))};
-  }
-};
-
 }  // namespace
 
 struct EmbreeRenderer::Scene {
@@ -194,28 +179,14 @@ MeshRenderOutput EmbreeRenderer::render(const Camera& camera, int threads, MeshR
   const std::size_t pixels = static_cast<std::size_t>(camera.width) * static_cast<std::size_t>(camera.height);
   out.distanceM.assign(pixels, std::numeric_limits<float>::infinity());
   const RayGenerator rays(camera);
-  constexpr int kTile = 16;
-  const int tilesX = (camera.width + kTile - 1) / kTile, tilesY = (camera.height + kTile - 1) / kTile;
-  std::atomic<int> nextTile{0};
-  const auto work = [&] {
-    for (int tile = nextTile++; tile < tilesX * tilesY; tile = nextTile++) {
-      const int x0 = tile % tilesX * kTile, y0 = tile / tilesX * kTile;
-      for (int y = y0; y < std::min(y0 + kTile, camera.height); ++y)
-        for (int x = x0; x < std::min(x0 + kTile, camera.width); ++x) {
-          const MeshHit h = trace(camera.eye, rays.direction(x, y));
-          std::uint8_t* p = out.colour.at(x, y);
-          p[0] = h.colour[0], p[1] = h.colour[1], p[2] = h.colour[2], p[3] = 255;
-          if (h.hit)
-            out.distanceM[static_cast<std::size_t>(y) * static_cast<std::size_t>(camera.width) + static_cast<std::size_t>(x)] =
-                static_cast<float>(h.distanceM);
-        }
-    }
-  };
-  const int count = threads > 0 ? threads : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
-  std::vector<std::thread> pool;
-  for (int i = 1; i < count; ++i) pool.emplace_back(work);
-  work();
-  for (std::thread& th : pool) th.join();
+  const int count = forEachPixelInTiles(camera.width, camera.height, threads, [&](int x, int y) {
+    const MeshHit h = trace(camera.eye, rays.direction(x, y));
+    std::uint8_t* p = out.colour.at(x, y);
+    p[0] = h.colour[0], p[1] = h.colour[1], p[2] = h.colour[2], p[3] = 255;
+    if (h.hit)
+      out.distanceM[static_cast<std::size_t>(y) * static_cast<std::size_t>(camera.width) + static_cast<std::size_t>(x)] =
+          static_cast<float>(h.distanceM);
+  });
   if (stats) {
     stats->seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     stats->raysPerSecond = static_cast<double>(pixels) / stats->seconds;

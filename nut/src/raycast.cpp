@@ -16,6 +16,7 @@
 #include <glm/matrix.hpp>
 
 #include <nut/hierarchy.hpp>
+#include <nut/render_loop.hpp>
 #include <nut/solids.hpp>
 
 namespace nut {
@@ -154,23 +155,6 @@ bool step(Level& L, const HniRayCaster::Block& block, int a) {
 }
 
 int argMin(const glm::vec3& v) { return v.x <= v.y ? (v.x <= v.z ? 0 : 2) : (v.y <= v.z ? 1 : 2); }
-
-// Front-to-back compositing of translucent cells.
-struct Composite {
-  glm::dvec3 colour{0.0};
-  double transmittance = 1.0;
-  void add(const std::array<std::uint8_t, 3>& c, double alpha) {
-    colour += transmittance * alpha * glm::dvec3(c[0], c[1], c[2]);
-    transmittance *= 1.0 - alpha;
-  }
-  std::array<std::uint8_t, 3> finish(const std::array<std::uint8_t, 3>& behind) const {
-    const glm::dvec3 c = colour + transmittance * glm::dvec3(behind[0], behind[1], behind[2]);
-    return {static_cast<std::uint8_t>(std::lround(std::min(255.0, c.x))),
-            static_cast<std::uint8_t>(std::lround(std::min(255.0, c.y))),
-            static_cast<std::uint8_t>(std::lround(std::min(255.0, c.z)))};
-  }
-};
-
 }  // namespace
 
 HniRayCaster::HniRayCaster(const Image& image, const glm::dvec3& originM)
@@ -346,34 +330,20 @@ RenderOutput renderHni(const HniRayCaster& caster, const Camera& camera, const R
   out.iterations.assign(pixels, 0);
   const RayGenerator rays(camera);
   const double pixelAngle = 2.0 * rays.tanHalfY / camera.height;
-  constexpr int kTile = 16;
-  const int tilesX = (camera.width + kTile - 1) / kTile, tilesY = (camera.height + kTile - 1) / kTile;
-  std::atomic<int> nextTile{0};
   std::atomic<long long> cappedRays{0};
-  const auto work = [&] {
-    for (int tile = nextTile++; tile < tilesX * tilesY; tile = nextTile++) {
-      const int x0 = tile % tilesX * kTile, y0 = tile / tilesX * kTile;
-      for (int y = y0; y < std::min(y0 + kTile, camera.height); ++y)
-        for (int x = x0; x < std::min(x0 + kTile, camera.width); ++x) {
-          const glm::dvec3 dir = rays.direction(x, y);
-          const RayResult r = caster.trace(camera.eye, dir, pixelAngle, options);
-          const std::size_t i = static_cast<std::size_t>(y) * static_cast<std::size_t>(camera.width) + static_cast<std::size_t>(x);
-          std::uint8_t* p = out.colour.at(x, y);
-          p[0] = r.colour[0], p[1] = r.colour[1], p[2] = r.colour[2], p[3] = 255;
-          if (r.hit) {
-            out.distanceM[i] = static_cast<float>(r.distanceM);
-            out.windowDepth[i] = static_cast<float>(rays.windowDepth(r.distanceM, dir));
-          }
-          out.iterations[i] = static_cast<std::uint16_t>(std::min(r.iterations, 65535));
-          if (r.capped) ++cappedRays;
-        }
+  const int count = forEachPixelInTiles(camera.width, camera.height, threads, [&](int x, int y) {
+    const glm::dvec3 dir = rays.direction(x, y);
+    const RayResult r = caster.trace(camera.eye, dir, pixelAngle, options);
+    const std::size_t i = static_cast<std::size_t>(y) * static_cast<std::size_t>(camera.width) + static_cast<std::size_t>(x);
+    std::uint8_t* p = out.colour.at(x, y);
+    p[0] = r.colour[0], p[1] = r.colour[1], p[2] = r.colour[2], p[3] = 255;
+    if (r.hit) {
+      out.distanceM[i] = static_cast<float>(r.distanceM);
+      out.windowDepth[i] = static_cast<float>(rays.windowDepth(r.distanceM, dir));
     }
-  };
-  const int count = threads > 0 ? threads : std::max(1u, std::thread::hardware_concurrency());
-  std::vector<std::thread> pool;
-  for (int i = 1; i < count; ++i) pool.emplace_back(work);
-  work();
-  for (std::thread& th : pool) th.join();
+    out.iterations[i] = static_cast<std::uint16_t>(std::min(r.iterations, 65535));
+    if (r.capped) ++cappedRays;
+  });
   if (stats) {
     stats->seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     stats->raysPerSecond = static_cast<double>(pixels) / stats->seconds;
