@@ -3,11 +3,9 @@
 #include <meshref/embree_renderer.hpp>
 
 #include <algorithm>
-#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <string>
-#include <thread>
 
 #include <embree3/rtcore.h>
 #include <glm/geometric.hpp>

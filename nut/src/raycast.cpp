@@ -10,7 +10,6 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
-#include <thread>
 
 #include <glm/geometric.hpp>
 #include <glm/matrix.hpp>
