@@ -182,7 +182,7 @@ HniRayCaster::HniRayCaster(const Image& image, const glm::dvec3& originM)
           const RedirectionRecord r = view_.redirection({texel[0], texel[1]});
           index = static_cast<int>(redirects_.size());
           redirects_.push_back({glm::mat3(rotationMatrix(Rotation{r.cubeRotation, r.yaw})), glm::vec3(r.offsetUnits),
-                                blockAt(r.target), r.wrap});
+                                blockAt(r.target), r.wrap, r.cubeRotation == 0 && r.yaw == 0});
         }
   }
 }
@@ -284,9 +284,11 @@ RayResult HniRayCaster::traceWith(const glm::dvec3& originM, const glm::dvec3& d
     const Redirect& record = redirects_[static_cast<std::size_t>(redirectByRecord_[static_cast<std::size_t>(texel[1] * 256 + texel[0])])];
     const int target = record.target;
     const glm::mat3& rotation = record.rotation;
-    const glm::vec3 cellSize = L.hi - L.lo;
-    const float projectedPx = std::max({cellSize.x, cellSize.y, cellSize.z}) / (std::max(t, 1.0f) * angle);
-    if (top + 1 == kMaxStackDepth || (options.lodPx > 0 && projectedPx < static_cast<float>(options.lodPx))) {
+    const auto belowLod = [&] {
+      const glm::vec3 cellSize = L.hi - L.lo;
+      return std::max({cellSize.x, cellSize.y, cellSize.z}) < static_cast<float>(options.lodPx) * std::max(t, 1.0f) * angle;
+    };
+    if (top + 1 == kMaxStackDepth || (options.lodPx > 0 && belowLod())) {
       // Level of detail: the target's visual summary of the face the ray entered through.
       const glm::vec3 normalWorld = L.entryNormal;
       const glm::vec3 inTarget = glm::transpose(L.toWorld * rotation) * normalWorld;
@@ -303,10 +305,17 @@ RayResult HniRayCaster::traceWith(const glm::dvec3& originM, const glm::dvec3& d
     }
     Level& child = stack[static_cast<std::size_t>(top + 1)];
     child.block = target;
-    const glm::mat3 toChild = glm::transpose(rotation);
-    child.o = toChild * (L.o - L.tile - L.lo - record.offset);
-    setDirection(child, toChild * L.d);
-    child.toWorld = L.toWorld * rotation;
+    if (record.unrotated) {
+      child.o = L.o - L.tile - L.lo - record.offset;
+      child.d = L.d;
+      child.invD = L.invD;
+      child.toWorld = L.toWorld;
+    } else {
+      const glm::mat3 toChild = glm::transpose(rotation);
+      child.o = toChild * (L.o - L.tile - L.lo - record.offset);
+      setDirection(child, toChild * L.d);
+      child.toWorld = L.toWorld * rotation;
+    }
     child.wrap = record.wrap;
     const float landed = land<mode>(child, blocks_[static_cast<std::size_t>(target)], t, tCellExit, L.entryNormal);
     if (landed < 0) continue;  // the sub-block does not reach into this part of the cell

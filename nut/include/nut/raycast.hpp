@@ -74,6 +74,7 @@ class HniRayCaster {
     glm::vec3 offset;    // units
     int target = 0;      // index into blocks_
     std::uint8_t wrap = 0;
+    bool unrotated = true;  // most redirections: the ray needs no transform, only the offset
   };
 
   template <Lookup mode>
