@@ -38,8 +38,11 @@ struct Level {
   glm::ivec3 kLo, kHi;   // metadata pixels holding them (-1 / M for the block faces)
   glm::vec3 tile;        // start of the current tile (multiple of D) on wrapped axes
   glm::vec3 tNext;       // ray parameter where the ray leaves the cell, per axis
-  // World normal of the face through which the ray entered the visible part of the current cell:
-  // a cell boundary, the block's box, or (inherited at landing) a clipping ancestor cell's face.
+  // The face through which the ray entered the visible part of the current cell: a boundary
+  // perpendicular to entryAxis of this block (a step or the block's box), or, when entryAxis is
+  // -1, entryNormal (world), inherited at landing from a clipping ancestor cell's face. Kept as an
+  // axis so that a step costs no matrix product; entryNormalWorld() builds it for the rare hit.
+  int entryAxis;
   glm::vec3 entryNormal;
 };
 
@@ -80,6 +83,7 @@ void setDirection(Level& L, const glm::vec3& d) {
 template <Lookup mode>
 float land(Level& L, const HniRayCaster::Block& block, float tStart, float tLimit, const glm::vec3& entryNormal) {
   float t0 = tStart, t1 = tLimit;
+  L.entryAxis = -1;
   L.entryNormal = entryNormal;
   for (int a = 0; a < 3; ++a) {
     if (L.wrap & (1 << a)) continue;
@@ -90,7 +94,7 @@ float land(Level& L, const HniRayCaster::Block& block, float tStart, float tLimi
     }
     float ta = -L.o[a] * L.invD[a], tb = (size - L.o[a]) * L.invD[a];
     if (ta > tb) std::swap(ta, tb);
-    if (ta > t0) t0 = ta, L.entryNormal = L.toWorld * faceNormal(L.d, a);
+    if (ta > t0) t0 = ta, L.entryAxis = a;
     t1 = std::min(t1, tb);
   }
   if (!(t0 < t1)) return -1.0f;
@@ -123,7 +127,7 @@ float land(Level& L, const HniRayCaster::Block& block, float tStart, float tLimi
 template <Lookup mode>
 bool step(Level& L, const HniRayCaster::Block& block, int a) {
   const AxisView& axis = block.axes[static_cast<std::size_t>(a)];
-  L.entryNormal = L.toWorld * faceNormal(L.d, a);
+  L.entryAxis = a;
   if (L.d[a] > 0) {
     if (++L.cell[a] == axis.cells) {
       if (!(L.wrap & (1 << a))) return false;
@@ -153,6 +157,10 @@ bool step(Level& L, const HniRayCaster::Block& block, int a) {
   return true;
 }
 
+glm::vec3 entryNormalWorld(const Level& L) {
+  return L.entryAxis >= 0 ? L.toWorld * faceNormal(L.d, L.entryAxis) : L.entryNormal;
+}
+
 int argMin(const glm::vec3& v) { return v.x <= v.y ? (v.x <= v.z ? 0 : 2) : (v.y <= v.z ? 1 : 2); }
 }  // namespace
 
@@ -164,6 +172,8 @@ HniRayCaster::HniRayCaster(const Image& image, const glm::dvec3& originM)
     Block block;
     block.header = view_.header(at);
     for (int a = 0; a < 3; ++a) block.axes[static_cast<std::size_t>(a)] = view_.axis(block.header, a);
+    block.bottomRow = view_.cellTexel(block.header, {0, 0, 0});
+    block.rowBytes = view_.rowBytes();
     blockByHeader_[static_cast<std::size_t>(at.v * 256 + at.u)] = static_cast<int>(blocks_.size());
     blocks_.push_back(block);
   }
@@ -175,7 +185,7 @@ HniRayCaster::HniRayCaster(const Image& image, const glm::dvec3& originM)
     for (int z = 0; z < n.z; ++z)
       for (int y = 0; y < n.y; ++y)
         for (int x = 0; x < n.x; ++x) {
-          const std::uint8_t* texel = view_.cellTexel(block.header, {x, y, z});
+          const std::uint8_t* texel = block.cellTexel({x, y, z});
           if (texel[3] != format::kCellRedirection) continue;
           int& index = redirectByRecord_[static_cast<std::size_t>(texel[1] * 256 + texel[0])];
           if (index >= 0) continue;
@@ -254,26 +264,31 @@ RayResult HniRayCaster::traceWith(const glm::dvec3& originM, const glm::dvec3& d
     advance = true;
     const float tCellExit = std::min(L.tNext[argMin(L.tNext)], L.tExit);
     if (!(tCellExit > t)) continue;  // touched, not entered (landing on a boundary moving away)
-    const std::uint8_t* texel = view_.cellTexel(block.header, L.cell);
+    const std::uint8_t* texel = block.cellTexel(L.cell);
     const int g = texel[3];
     if (g >= format::kCellFirstSolid) {
-      const glm::vec3 size = L.hi - L.lo;
-      const glm::vec3 org = (L.o - L.tile - L.lo) / size;
-      const glm::vec3 dir = L.d / size;
-      const Solid solid{static_cast<std::uint8_t>(g - format::kCellFirstSolid)};
-      const auto hit = intersectSolid<float>(solid, org, dir, t, tCellExit);
-      if (!hit) continue;
+      // A box is hit where the ray enters the cell's visible part (intersectSolid's answer too).
+      float tHit = t;
+      glm::vec3 surfaceNormal(0.0f);  // unit-cube normal of a hit inside the cell, else 0
+      if (g != format::kCellFirstSolid) {
+        const glm::vec3 size = L.hi - L.lo;
+        const Solid solid{static_cast<std::uint8_t>(g - format::kCellFirstSolid)};
+        const auto hit = intersectSolid<float>(solid, (L.o - L.tile - L.lo) / size, L.d / size, t, tCellExit);
+        if (!hit) continue;
+        tHit = hit->t;
+        if (tHit != t) surfaceNormal = glm::normalize(hit->normal / size);
+      }
       const Material m = view_.material(file_, texel[0] | texel[1] << 8);
       // A hit where the ray enters the cell's visible part is on that face, which may be a cell
       // boundary, a box face or the face of an ancestor cell that clips this block.
       // A camera on or inside a solid sees it at distance 0, facing itself (as intersectSolid's
       // origin-inside rule).
-      const glm::vec3 normalWorld = hit->t <= 0     ? -glm::vec3(direction)
-                                    : hit->t == t ? L.entryNormal
-                                                  : glm::normalize(L.toWorld * glm::normalize(hit->normal / size));
+      const glm::vec3 normalWorld = tHit <= 0     ? -glm::vec3(direction)
+                                    : tHit == t ? entryNormalWorld(L)
+                                                : glm::normalize(L.toWorld * surfaceNormal);
       const auto colour = shade({m.r, m.g, m.b}, glm::dvec3(normalWorld), direction);
       if (m.opacity == 255) {
-        finish(hit->t, normalWorld, colour);
+        finish(tHit, normalWorld, colour);
         return result;
       }
       composite.add(colour, m.opacity / 255.0);
@@ -290,7 +305,7 @@ RayResult HniRayCaster::traceWith(const glm::dvec3& originM, const glm::dvec3& d
     };
     if (top + 1 == kMaxStackDepth || (options.lodPx > 0 && belowLod())) {
       // Level of detail: the target's visual summary of the face the ray entered through.
-      const glm::vec3 normalWorld = L.entryNormal;
+      const glm::vec3 normalWorld = entryNormalWorld(L);
       const glm::vec3 inTarget = glm::transpose(L.toWorld * rotation) * normalWorld;
       const int axis = argMin(-glm::abs(inTarget));
       const int side = 2 * axis + (inTarget[axis] > 0 ? 0 : 1);
@@ -317,7 +332,8 @@ RayResult HniRayCaster::traceWith(const glm::dvec3& originM, const glm::dvec3& d
       child.toWorld = L.toWorld * rotation;
     }
     child.wrap = record.wrap;
-    const float landed = land<mode>(child, blocks_[static_cast<std::size_t>(target)], t, tCellExit, L.entryNormal);
+    const float landed =
+        land<mode>(child, blocks_[static_cast<std::size_t>(target)], t, tCellExit, entryNormalWorld(L));
     if (landed < 0) continue;  // the sub-block does not reach into this part of the cell
     t = landed;
     ++top;

@@ -85,6 +85,8 @@ class HniView {
     return pixels_ + (static_cast<std::size_t>(originY_ + v) * static_cast<std::size_t>(rowPixels_) +
                       static_cast<std::size_t>(originX_ + u)) * 4;
   }
+  // Bytes from one image row to the next.
+  std::ptrdiff_t rowBytes() const { return static_cast<std::ptrdiff_t>(rowPixels_) * 4; }
   const std::uint8_t* texel(TexelAddress a, int du = 0, int dv = 0) const {
     return texel(a.u + du, a.v + dv);
   }

@@ -65,6 +65,11 @@ class HniRayCaster {
   struct Block {
     BlockHeader header;
     std::array<AxisView, 3> axes;
+    const std::uint8_t* bottomRow;  // data pixel of cell (0, 0, 0): rows run upwards from here
+    std::ptrdiff_t rowBytes;
+    const std::uint8_t* cellTexel(const glm::ivec3& c) const {
+      return bottomRow + 4 * (c.x + c.z * header.cells.x) - rowBytes * c.y;
+    }
   };
 
  private:
