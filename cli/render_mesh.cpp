@@ -1,5 +1,7 @@
-// `nut render-mesh IN.obj -o OUT.png`: renders an OBJ mesh with the Embree reference renderer,
-// with the same camera flags and default camera as `nut render`, so the two images compare.
+// `nut render-mesh IN.obj -o OUT.png`: renders an OBJ mesh with the Embree reference renderer, or
+// rasterises it with OpenGL (`--backend gl`), with the same camera flags and default camera as
+// `nut render`, so the images compare.
+#include <chrono>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -14,6 +16,7 @@
 
 #include "camera_options.hpp"
 #include "commands.hpp"
+#include "gl_backend.hpp"
 
 namespace nut::cli {
 
@@ -22,8 +25,64 @@ namespace {
 struct RenderMeshOptions {
   std::string input, output, depth, stats, backend = "cpu";
   CameraOptions camera;
+  GlOptions gl;
   int threads = 0;
 };
+
+int writeOutputs(const RenderMeshOptions& o, const Camera& camera, const Image& colour,
+                 const std::vector<float>& distanceM, const nlohmann::json& stats) {
+  if (Status s = writePng(o.output, colour); !s) {
+    std::fprintf(stderr, "error: %s\n", s.error().message.c_str());
+    return kUnreadable;
+  }
+  if (!o.depth.empty())
+    if (Status s = writePfm(o.depth, camera.width, camera.height, distanceM); !s) {
+      std::fprintf(stderr, "error: %s\n", s.error().message.c_str());
+      return kUnreadable;
+    }
+  if (!o.stats.empty())
+    if (Status s = writeTextFile(o.stats, stats.dump(2) + "\n"); !s) {
+      std::fprintf(stderr, "error: %s\n", s.error().message.c_str());
+      return kUnreadable;
+    }
+  return kOk;
+}
+
+// Rasterises the mesh with OpenGL: the camera is fitted to the same bounds as Embree's.
+int runGl(const RenderMeshOptions& o, const meshref::TriangleMesh& mesh) {
+  auto camera = o.camera.resolve(mesh.bounds);
+  if (!camera) {
+    std::fprintf(stderr, "error: %s\n", camera.error().message.c_str());
+    return kUsage;
+  }
+  auto gl = o.gl.open();
+  if (!gl) {
+    std::fprintf(stderr, "error: GL: %s\n", gl.error().message.c_str());
+    return kUnreadable;
+  }
+  if (Status s = (*gl)->addMesh(toMeshData(mesh)); !s) {
+    std::fprintf(stderr, "error: %s: %s\n", o.input.c_str(), s.error().message.c_str());
+    return kInvalid;
+  }
+  std::fprintf(stderr, "render-mesh: %s, %zu triangle%s, %dx%d, GL %s: %s\n", o.input.c_str(), mesh.triangles.size(),
+               mesh.triangles.size() == 1 ? "" : "s", camera->width, camera->height, o.gl.context.c_str(),
+               (*gl)->context().description().c_str());
+  const auto start = std::chrono::steady_clock::now();
+  if (Status s = (*gl)->draw(*camera, RayCastOptions{}); !s) {
+    std::fprintf(stderr, "error: GL: %s\n", s.error().message.c_str());
+    return kUnreadable;
+  }
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const viewer::GlFrame frame = (*gl)->read(*camera);
+  const nlohmann::json stats = {{"seconds", seconds},
+                                {"triangles", mesh.triangles.size()},
+                                {"width", camera->width},
+                                {"height", camera->height},
+                                {"backend", o.backend}};
+  if (const int code = writeOutputs(o, *camera, frame.colour, frame.distanceM, stats); code != kOk) return code;
+  std::fprintf(stderr, "render-mesh: wrote %s (%.3f s)\n", o.output.c_str(), seconds);
+  return kOk;
+}
 
 int run(const RenderMeshOptions& o) {
   auto mesh = meshref::readObj(o.input);
@@ -35,6 +94,7 @@ int run(const RenderMeshOptions& o) {
     return readable ? kInvalid : kUnreadable;
   }
   for (const std::string& warning : mesh->warnings) std::fprintf(stderr, "warning: %s\n", warning.c_str());
+  if (o.backend == "gl") return runGl(o, *mesh);
   auto renderer = meshref::EmbreeRenderer::create(*mesh);
   if (!renderer) {
     std::fprintf(stderr, "error: %s: %s\n", o.input.c_str(), renderer.error().message.c_str());
@@ -50,29 +110,15 @@ int run(const RenderMeshOptions& o) {
                renderer->buildSeconds());
   meshref::MeshRenderStats stats;
   const meshref::MeshRenderOutput frame = renderer->render(*camera, o.threads, &stats);
-  if (Status s = writePng(o.output, frame.colour); !s) {
-    std::fprintf(stderr, "error: %s\n", s.error().message.c_str());
-    return kUnreadable;
-  }
-  if (!o.depth.empty())
-    if (Status s = writePfm(o.depth, camera->width, camera->height, frame.distanceM); !s) {
-      std::fprintf(stderr, "error: %s\n", s.error().message.c_str());
-      return kUnreadable;
-    }
-  if (!o.stats.empty()) {
-    const nlohmann::json j = {{"seconds", stats.seconds},
-                              {"rays_per_second", stats.raysPerSecond},
-                              {"build_seconds", renderer->buildSeconds()},
-                              {"triangles", mesh->triangles.size()},
-                              {"threads", stats.threads},
-                              {"width", camera->width},
-                              {"height", camera->height},
-                              {"backend", o.backend}};
-    if (Status s = writeTextFile(o.stats, j.dump(2) + "\n"); !s) {
-      std::fprintf(stderr, "error: %s\n", s.error().message.c_str());
-      return kUnreadable;
-    }
-  }
+  const nlohmann::json j = {{"seconds", stats.seconds},
+                            {"rays_per_second", stats.raysPerSecond},
+                            {"build_seconds", renderer->buildSeconds()},
+                            {"triangles", mesh->triangles.size()},
+                            {"threads", stats.threads},
+                            {"width", camera->width},
+                            {"height", camera->height},
+                            {"backend", o.backend}};
+  if (const int code = writeOutputs(o, *camera, frame.colour, frame.distanceM, j); code != kOk) return code;
   std::fprintf(stderr, "render-mesh: wrote %s (%.3f s, %.2f Mrays/s, %d thread%s)\n", o.output.c_str(), stats.seconds,
                stats.raysPerSecond / 1e6, stats.threads, stats.threads == 1 ? "" : "s");
   return kOk;
@@ -82,19 +128,24 @@ int run(const RenderMeshOptions& o) {
 
 void addRenderMeshCommand(CLI::App& app, int& exitCode) {
   auto o = std::make_shared<RenderMeshOptions>();
-  CLI::App* cmd = app.add_subcommand("render-mesh", "Render an OBJ mesh with the reference renderer (Embree)");
+  CLI::App* cmd =
+      app.add_subcommand("render-mesh", "Render an OBJ mesh with the reference renderer (Embree) or OpenGL");
   cmd->add_option("input", o->input, "Mesh (OBJ; materials from the MTL files it names: Kd colour, d opacity)")->required();
   cmd->add_option("-o,--output", o->output, "Output image (PNG)")->required();
   o->camera.addTo(*cmd);
-  cmd->add_option("--backend", o->backend, "Renderer")->check(CLI::IsMember({"cpu"}))->default_val("cpu");
+  cmd->add_option("--backend", o->backend, "Renderer: cpu (Embree ray tracing) or gl (OpenGL rasterisation)")
+      ->check(CLI::IsMember({"cpu", "gl"}))
+      ->default_val("cpu");
+  o->gl.addTo(*cmd);
   cmd->add_option("--depth", o->depth, "Also write the distance along each ray (metres, +inf for misses) as PFM");
   cmd->add_option("--stats", o->stats, "Write timing statistics as JSON");
-  cmd->add_option("--threads", o->threads, "Worker threads (0: all cores)")->check(CLI::NonNegativeNumber);
+  cmd->add_option("--threads", o->threads, "Worker threads of the cpu back-end (0: all cores)")->check(CLI::NonNegativeNumber);
   cmd->footer(
       "With no camera flags the camera is fitted to the mesh's bounding box exactly as `nut render` fits it to an\n"
       "HNI's root block, so a mesh and its HNI render from the same view.\n\n"
       "Example:\n  nut render-mesh building.obj -o building-mesh.png --size 1280x720 --stats stats.json\n"
-      "  nut compare building-hni.png building-mesh.png --diff diff.png");
+      "  nut compare building-hni.png building-mesh.png --diff diff.png\n"
+      "  nut render-mesh building.obj -o building-raster.png --backend gl");
   cmd->callback([o, &exitCode] { exitCode = run(*o); });
 }
 

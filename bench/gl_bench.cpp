@@ -1,0 +1,121 @@
+// Frame time of one sample building at 1280x720, the same camera, measured in one run: the GLSL
+// ray caster (OSMesa, and EGL: a GPU where there is one, else llvmpipe again), the CPU reference
+// caster (all cores), the GL raster of the building's exported mesh (OSMesa), and Embree on that
+// mesh (all cores). GL frames end with glFinish, so the time is the rendering's. Results read as
+// frames' milliseconds and rays (pixels) per second; docs/BENCHMARKS.md records a run.
+#include <benchmark/benchmark.h>
+
+#include <cstdio>
+#include <cstdlib>
+#include <memory>
+#include <string>
+
+#include <meshref/embree_renderer.hpp>
+#include <nut/hni.hpp>
+#include <nut/mesh_export.hpp>
+#include <nut/png_io.hpp>
+#include <nut/raycast.hpp>
+#include <viewer/offscreen.hpp>
+
+namespace {
+
+constexpr int kWidth = 1280, kHeight = 720;
+constexpr const char* kSample = "building";
+
+[[noreturn]] void fail(const std::string& what) {
+  std::fprintf(stderr, "gl_bench: %s\n", what.c_str());
+  std::exit(1);
+}
+
+struct Scene {
+  nut::PngFile png;
+  nut::Hierarchy model;
+  nut::ExportedMesh mesh;
+  nut::Camera camera;
+};
+
+const Scene& scene() {
+  static const std::unique_ptr<Scene> s = [] {
+    auto out = std::make_unique<Scene>();
+    auto png = nut::readPng(std::string(NUT_SOURCE_DIR) + "/samples/hni/" + kSample + ".png");
+    if (!png) fail(png.error().message);
+    out->png = std::move(*png);
+    auto h = nut::decode(out->png.image);
+    if (!h) fail(h.error().message);
+    out->model = std::move(*h);
+    auto mesh = nut::exportMesh(out->model, out->png.text.originM);
+    if (!mesh) fail(mesh.error().message);
+    out->mesh = std::move(*mesh);
+    auto bounds = nut::contentBounds(out->model, out->png.text.originM);
+    if (!bounds) fail(bounds.error().message);
+    out->camera = nut::fitCamera(*bounds, kWidth, kHeight);
+    return out;
+  }();
+  return *s;
+}
+
+void setRate(benchmark::State& state) { state.SetItemsProcessed(state.iterations() * kWidth * kHeight); }
+
+// A renderer of the back-end holding the HNI (rayCast) or the exported mesh; the first frame,
+// which compiles the shader variants, is drawn before timing.
+void glFrame(benchmark::State& state, nut::viewer::Backend backend, bool rayCast) {
+  const Scene& s = scene();
+  nut::viewer::OffscreenOptions options;
+  options.backend = backend;
+  auto renderer = nut::viewer::OffscreenRenderer::create(options);
+  if (!renderer) {
+    state.SkipWithError(renderer.error().message.c_str());
+    return;
+  }
+  const nut::Status added = rayCast ? (*renderer)->addHni(s.png.image, s.png.text.originM)
+                                    : (*renderer)->addMesh(nut::viewer::meshData(s.mesh, s.model.materials));
+  if (!added) fail(added.error().message);
+  if (nut::Status first = (*renderer)->draw(s.camera, {}); !first) fail(first.error().message);
+  for (auto _ : state)
+    if (nut::Status drawn = (*renderer)->draw(s.camera, {}); !drawn) fail(drawn.error().message);
+  setRate(state);
+  state.SetLabel((*renderer)->context().description());
+}
+
+void cpuCaster(benchmark::State& state) {
+  const Scene& s = scene();
+  const nut::HniRayCaster caster(s.png.image, s.png.text.originM);
+  nut::RenderStats stats;
+  for (auto _ : state) {
+    auto out = nut::renderHni(caster, s.camera, {}, 0, &stats);
+    benchmark::DoNotOptimize(out.colour.pixels.data());
+  }
+  setRate(state);
+  state.counters["threads"] = stats.threads;
+}
+
+void embree(benchmark::State& state) {
+  const Scene& s = scene();
+  nut::meshref::TriangleMesh mesh;
+  for (const nut::Material& m : s.model.materials) mesh.materials.push_back({"", m});
+  mesh.positions = s.mesh.positions;
+  mesh.triangles = s.mesh.triangles;
+  mesh.triangleMaterial.assign(s.mesh.triangleMaterial.begin(), s.mesh.triangleMaterial.end());
+  auto bounds = nut::contentBounds(s.model, s.png.text.originM);
+  mesh.bounds = *bounds;
+  auto renderer = nut::meshref::EmbreeRenderer::create(mesh);
+  if (!renderer) fail(renderer.error().message);
+  nut::meshref::MeshRenderStats stats;
+  for (auto _ : state) {
+    auto out = renderer->render(s.camera, 0, &stats);
+    benchmark::DoNotOptimize(out.colour.pixels.data());
+  }
+  setRate(state);
+  state.counters["threads"] = stats.threads;
+}
+
+using nut::viewer::Backend;
+
+BENCHMARK_CAPTURE(glFrame, gl_raycast/osmesa, Backend::OSMesa, true)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK_CAPTURE(glFrame, gl_raycast/egl, Backend::Egl, true)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(cpuCaster)->Name("cpu_raycast")->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK_CAPTURE(glFrame, gl_mesh_raster/osmesa, Backend::OSMesa, false)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK_CAPTURE(glFrame, gl_mesh_raster/egl, Backend::Egl, false)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(embree)->Name("embree_mesh")->Unit(benchmark::kMillisecond)->UseRealTime();
+
+}  // namespace

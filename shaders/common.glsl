@@ -1,0 +1,16 @@
+// common.glsl — what every program shares: the shading of docs/RENDERING.md.
+//
+// References: Kuang et al. 2013, section 6 (rendering); docs/RENDERING.md "Shading", which every
+// renderer of the project follows (nut/camera.hpp shade() is the C++ original). Programs are
+// assembled as: #version, format_constants.glsl (generated from the C++ constants), this file,
+// then the program's own files (nut::viewer::ShaderLibrary).
+
+const float kInfinity = uintBitsToFloat(0x7F800000u);
+
+// albedo x (ambient + (1 - ambient) max(0, n.l)) with the normal turned to face the viewer, on
+// sRGB bytes (0..255) without linearisation, rounded half up to the byte.
+vec3 shade(vec3 albedo, vec3 normal, vec3 rayDirection) {
+  if (dot(normal, rayDirection) > 0.0) normal = -normal;
+  float light = kAmbient + (1.0 - kAmbient) * max(0.0, dot(normal, kLightDirection));
+  return floor(min(vec3(255.0), albedo * light) + 0.5);
+}

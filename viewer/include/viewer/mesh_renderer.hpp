@@ -1,0 +1,82 @@
+// viewer/mesh_renderer.hpp — triangle meshes rasterised with the shared camera and shading
+// (shaders/mesh.vert, shaders/mesh.frag): a building's complementary mesh beside its HNI, or a
+// whole mesh for comparison with the ray casters (`nut render-mesh --backend gl`).
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+#include <nut/camera.hpp>
+#include <nut/error.hpp>
+#include <nut/hierarchy.hpp>
+#include <nut/mesh_export.hpp>
+
+#include <viewer/context.hpp>
+#include <viewer/frame_view.hpp>
+#include <viewer/gl_object.hpp>
+#include <viewer/shader_library.hpp>
+
+namespace nut::viewer {
+
+// A mesh in world metres with one material per triangle (what nut::ExportedMesh and
+// nut::meshref::TriangleMesh hold, in a form that depends on neither).
+struct MeshData {
+  std::vector<glm::dvec3> positions;
+  std::vector<std::array<std::uint32_t, 3>> triangles;
+  std::vector<Material> triangleMaterial;  // per triangle
+};
+
+// An exported NUT mesh (nut::exportMesh) with the hierarchy's materials.
+MeshData meshData(const ExportedMesh& mesh, const std::vector<Material>& materials);
+
+// A mesh on the GPU. Vertices are stored relative to its bounds centre (the anchor), so that
+// float precision goes to the mesh and not to its distance from the world origin; each triangle
+// has its own three vertices with its face normal (computed in double) and material. Degenerate
+// triangles, which have no normal and which no ray can hit, are dropped.
+class GpuMesh {
+ public:
+  // Errors: a triangle index out of range, a material count that does not match.
+  static Result<GpuMesh> upload(const Gl& gl, const MeshData& mesh);
+
+  const WorldBox& bounds() const { return bounds_; }
+  std::size_t triangleCount() const { return opaqueVertices_ / 3 + translucent_.size() / 3; }
+
+ private:
+  friend class MeshRenderer;
+  struct Vertex {
+    float position[3];
+    float normal[3];
+    std::uint8_t material[4];  // r, g, b, opacity
+  };
+  explicit GpuMesh(const Gl& gl) : gl_(&gl) {}
+  const Gl* gl_;
+  WorldBox bounds_;
+  glm::dvec3 anchorM{0.0};
+  GlObject vertexArray_, opaqueBuffer_;
+  GLsizei opaqueVertices_ = 0;
+  // Translucent triangles stay on the CPU too: they are sorted back to front for every frame.
+  std::vector<Vertex> translucent_;
+  GlObject translucentArray_, translucentBuffer_;
+};
+
+class MeshRenderer {
+ public:
+  static Result<MeshRenderer> create(const Context& context, const ShaderLibrary& library, int glslVersion = 0);
+
+  // Opaque triangles with depth test (GL_LESS) and depth write, no blending.
+  void drawOpaque(const FrameView& view, const GpuMesh& mesh) const;
+  // Translucent triangles sorted back to front (by centroid distance), blended over what is drawn,
+  // depth-tested without writing depth. Draw them after everything opaque and after the HNIs.
+  void drawTranslucent(const FrameView& view, GpuMesh& mesh) const;
+
+ private:
+  MeshRenderer(const Gl& gl, Program program) : gl_(&gl), program_(std::move(program)) {}
+  void setUniforms(const FrameView& view, const GpuMesh& mesh) const;
+  const Gl* gl_;
+  Program program_;
+};
+
+}  // namespace nut::viewer
