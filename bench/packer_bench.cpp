@@ -15,6 +15,8 @@
 #include <random>
 #include <vector>
 
+#include "../tests/hni_like_items.hpp"
+
 namespace {
 
 constexpr int kMaxWidth = 256;     // the HNI width search's range
@@ -22,29 +24,9 @@ constexpr int kMaxHeight = 4096;
 constexpr std::uint32_t kSeeds[] = {1, 2, 3, 4, 5};
 
 // mt19937's output sequence is fixed by the standard (the distributions' is not).
-int randomInt(std::mt19937& rng, int lo, int hi) {
-  return lo + static_cast<int>(rng() % static_cast<std::uint32_t>(hi - lo + 1));
-}
+using packer::testing::hniLikeItems;
+using packer::testing::randomInt;
 
-// The items an HNI of `blocks` blocks packs: per block a 12x1 header, three Mx2 metadata arrays
-// and an (nx*nz) x ny data component; plus a few redirection rows and a material row. The same
-// generator as tests/packer_test.cpp, so the waste here matches the test's.
-std::vector<packer::Item> hniLikeItems(std::uint32_t seed, int blocks) {
-  std::mt19937 rng(seed);
-  std::vector<packer::Item> items;
-  auto add = [&](int width, int height) {
-    items.push_back({.id = static_cast<int>(items.size()), .width = width, .height = height});
-  };
-  for (int b = 0; b < blocks; ++b) {
-    add(12, 1);
-    for (int k = 0; k < 3; ++k) add(randomInt(rng, 2, 40), 2);
-    const int nx = randomInt(rng, 1, 12), ny = randomInt(rng, 1, 12), nz = randomInt(rng, 1, 12);
-    add(nx * nz, ny);
-  }
-  for (int r = randomInt(rng, 1, 4); r > 0; --r) add(4 * randomInt(rng, 1, 8), 1);
-  add(randomInt(rng, 8, 64), 1);
-  return items;
-}
 
 struct Extent {
   int width = 0, height = 0;

@@ -17,6 +17,8 @@
 #include <tuple>
 #include <vector>
 
+#include "hni_like_items.hpp"
+
 namespace {
 
 using packer::Heuristic;
@@ -48,9 +50,8 @@ std::string name(Mode m) { return m == Mode::Online ? "Online" : "Global"; }
 
 // mt19937's output sequence is fixed by the standard (the distributions' is not), so the seeded
 // inputs are the same with every standard library.
-int randomInt(std::mt19937& rng, int lo, int hi) {
-  return lo + static_cast<int>(rng() % static_cast<std::uint32_t>(hi - lo + 1));
-}
+using packer::testing::hniLikeItems;
+using packer::testing::randomInt;
 
 // Sizes like an HNI's records: 12x1 headers and Mx2 metadata arrays (which must stay inside the
 // metadata region) mixed with data blocks from 1x1 up to 120x40.
@@ -70,25 +71,6 @@ std::vector<Item> randomItems(std::uint32_t seed, int count) {
   return items;
 }
 
-// The items an HNI of `blocks` blocks packs: per block a 12x1 header, three Mx2 metadata arrays
-// and an (nx*nz) x ny data component; plus a few redirection rows (4 texels per redirection)
-// and a material row.
-std::vector<Item> hniLikeItems(std::uint32_t seed, int blocks) {
-  std::mt19937 rng(seed);
-  std::vector<Item> items;
-  auto add = [&](int width, int height) {
-    items.push_back({.id = static_cast<int>(items.size()), .width = width, .height = height});
-  };
-  for (int b = 0; b < blocks; ++b) {
-    add(12, 1);
-    for (int k = 0; k < 3; ++k) add(randomInt(rng, 2, 40), 2);
-    const int nx = randomInt(rng, 1, 12), ny = randomInt(rng, 1, 12), nz = randomInt(rng, 1, 12);
-    add(nx * nz, ny);
-  }
-  for (int r = randomInt(rng, 1, 4); r > 0; --r) add(4 * randomInt(rng, 1, 8), 1);
-  add(randomInt(rng, 8, 64), 1);
-  return items;
-}
 
 bool overlaps(const Rect& a, const Rect& b) {
   return a.x < b.right() && b.x < a.right() && a.y < b.bottom() && b.y < a.bottom();
