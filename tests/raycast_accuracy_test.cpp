@@ -36,6 +36,7 @@
 #include <nut/raycast.hpp>
 
 #include "random_hierarchy.hpp"
+#include "ray_printing.hpp"
 
 namespace nut {
 namespace {
@@ -107,19 +108,8 @@ double exactTolerance(const Scene& s, const Ray& ray, const RayResult& exact) {
 }
 
 std::string describe(const Scene& s, const Ray& ray, const RayResult& exact, const RayResult& caster) {
-  const auto vec = [](const glm::dvec3& v) {
-    std::ostringstream o;
-    o.precision(17);
-    o << "(" << v.x << ", " << v.y << ", " << v.z << ")";
-    return o.str();
-  };
-  const auto result = [&](const RayResult& r) {
-    std::ostringstream o;
-    o.precision(17);
-    o << "hit " << r.hit << " distance " << r.distanceM << " normal " << vec(r.normal) << " colour ("
-      << int(r.colour[0]) << ", " << int(r.colour[1]) << ", " << int(r.colour[2]) << ")";
-    return o.str();
-  };
+  const auto vec = [](const glm::dvec3& v) { return testing::describe(v); };
+  const auto result = [](const RayResult& r) { return testing::describe(r); };
   return "seed " + std::to_string(s.seed) + " ray " + std::to_string(ray.index) + " origin " +
          vec(ray.origin) + " dir " + vec(ray.dir) + " (root origin " + vec(kWorldOrigin) +
          ")\n    exact:  " + result(exact) + "\n    caster: " + result(caster);

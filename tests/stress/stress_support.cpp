@@ -1,6 +1,8 @@
 // The comparison machinery of the stress tests (stress_support.hpp).
 #include "stress_support.hpp"
 
+#include "../ray_printing.hpp"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -148,20 +150,8 @@ double heuristicBound(const Scene& s, const Ray& ray, const Reference& truth, co
 std::string lookupName(Lookup lookup) { return lookup == Lookup::Exact ? "exact" : "heuristic"; }
 
 std::string describe(const Scene& s, const Ray& ray, const RayResult& exact, const RayResult& cast, Lookup lookup) {
-  const auto vec = [](const glm::dvec3& v) {
-    std::ostringstream o;
-    o.precision(17);
-    o << "(" << v.x << ", " << v.y << ", " << v.z << ")";
-    return o.str();
-  };
-  const auto result = [&](const RayResult& r) {
-    std::ostringstream o;
-    o.precision(17);
-    o << "hit " << r.hit << " distance " << r.distanceM << " normal " << vec(r.normal) << " colour ("
-      << int(r.colour[0]) << ", " << int(r.colour[1]) << ", " << int(r.colour[2]) << ")"
-      << (r.capped ? " capped" : "") << " iterations " << r.iterations;
-    return o.str();
-  };
+  const auto vec = [](const glm::dvec3& v) { return testing::describe(v); };
+  const auto result = [](const RayResult& r) { return testing::describe(r); };
   return "scene \"" + s.name + "\" (root origin " + vec(s.origin) + "), " + lookupName(lookup) + " lookup, ray " +
          std::to_string(ray.index) + "\n    origin " + vec(ray.origin) + " dir " + vec(ray.dir) +
          "\n    exact:  " + result(exact) + "\n    caster: " + result(cast);
