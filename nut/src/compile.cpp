@@ -3,6 +3,7 @@
 // packer put them. Records addressed with 8 bits are kept inside the 256x256 metadata region.
 #include <nut/hni.hpp>
 
+#include <climits>
 #include <cmath>
 #include <map>
 #include <string>
@@ -132,7 +133,9 @@ Result<Image> compile(const Hierarchy& h, const CompileOptions& options) {
   std::vector<packer::Item> items;
   std::vector<ItemInfo> infos;
   const auto add = [&](ItemInfo info, int width, int height, bool metadataRegion) {
-    const int limit = metadataRegion ? format::kMetadataRegion : format::kMaxImageSize;
+    // Only 8-bit-addressed records carry a limit: the packer treats any limit as "region first",
+    // and the bin itself already bounds everything to the 4096 px image limit.
+    const int limit = metadataRegion ? format::kMetadataRegion : INT_MAX;
     items.push_back({static_cast<int>(items.size()), width, height, limit, limit});
     infos.push_back(info);
   };
