@@ -14,5 +14,6 @@ void addRenderCommand(CLI::App& app, int& exitCode);
 void addExportMeshCommand(CLI::App& app, int& exitCode);
 void addRenderMeshCommand(CLI::App& app, int& exitCode);
 void addCompareCommand(CLI::App& app, int& exitCode);
+void addConvertCommand(CLI::App& app, int& exitCode);
 
 }  // namespace nut::cli

@@ -16,6 +16,7 @@ int main(int argc, char** argv) {
   nut::cli::addExportMeshCommand(app, exitCode);
   nut::cli::addRenderMeshCommand(app, exitCode);
   nut::cli::addCompareCommand(app, exitCode);
+  nut::cli::addConvertCommand(app, exitCode);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp&) {

@@ -1,0 +1,204 @@
+// `nut convert IN.obj -o OUT.png`: converts an OBJ building into an HNI (converter/convert.hpp);
+// `-o FOLDER` converts each object of the file into its own HNI and writes a city manifest.
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <memory>
+#include <set>
+#include <string>
+#include <unistd.h>
+
+#include <nlohmann/json.hpp>
+
+#include <converter/city.hpp>
+#include <converter/convert.hpp>
+#include <nut/png_io.hpp>
+
+#include "commands.hpp"
+
+namespace nut::cli {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+struct ConvertCliOptions {
+  std::string input, output, complement, report;
+  double toleranceM = 0.01;
+  double angleDeg = 1.0;
+  bool zUp = false, quiet = false, noAutoBlocks = false, noWedges = false;
+  std::vector<std::string> blocks;
+  int threads = 0;
+};
+
+// A progress bar on stderr: redrawn in place on a terminal, one line per phase otherwise.
+class ProgressBar {
+ public:
+  ProgressBar(bool enabled, std::string label) : enabled_(enabled), tty_(isatty(fileno(stderr)) != 0), label_(std::move(label)) {}
+  ~ProgressBar() { finish(); }
+  void update(std::string_view phase, double fraction) {
+    if (!enabled_) return;
+    const int percent = static_cast<int>(100 * fraction);
+    if (phase == phase_ && (percent == percent_ || !tty_)) return;
+    if (phase != phase_ && !tty_) std::fprintf(stderr, "convert: %s: %.*s\n", label_.c_str(), static_cast<int>(phase.size()), phase.data());
+    phase_ = std::string(phase);
+    percent_ = percent;
+    if (!tty_) return;
+    constexpr int kWidth = 30;
+    const int filled = kWidth * percent / 100;
+    std::fprintf(stderr, "\r%s %-8s [%s%s] %3d%%", label_.c_str(), phase_.c_str(), std::string(static_cast<std::size_t>(filled), '#').c_str(),
+                 std::string(static_cast<std::size_t>(kWidth - filled), '.').c_str(), percent);
+    drawn_ = true;
+  }
+  void finish() {
+    if (drawn_) std::fputc('\n', stderr);
+    drawn_ = false;
+  }
+
+ private:
+  bool enabled_, tty_;
+  std::string label_, phase_;
+  int percent_ = -1;
+  bool drawn_ = false;
+};
+
+Result<WorldBox> parseBox(const std::string& text) {
+  WorldBox b;
+  char tail = 0;
+  if (std::sscanf(text.c_str(), "%lf,%lf,%lf:%lf,%lf,%lf%c", &b.min.x, &b.min.y, &b.min.z, &b.max.x, &b.max.y, &b.max.z,
+                  &tail) != 6)
+    return Error{"--block '" + text + "': expected x0,y0,z0:x1,y1,z1 in metres"};
+  for (int a = 0; a < 3; ++a)
+    if (!(b.max[a] > b.min[a])) return Error{"--block '" + text + "': the second corner must exceed the first on every axis"};
+  return b;
+}
+
+void printSummary(const converter::ConvertReport& r, const std::string& output) {
+  const auto& s = r.solid;
+  std::fprintf(stderr, "convert: %s: %s\n", r.name.c_str(), r.check.summary().c_str());
+  std::fprintf(stderr,
+               "convert: %s: grid %dx%dx%d, %lld solid cells (%lld wedges), %d blocks; surface %.1f %% NUT, %.1f %% "
+               "complementary mesh (%zu triangles)\n",
+               r.name.c_str(), s.cells[0], s.cells[1], s.cells[2], s.solidCells, s.wedgeCells, r.hni.blocks,
+               s.areaM2 > 0 ? 100 * s.nutAreaM2 / s.areaM2 : 0.0, s.areaM2 > 0 ? 100 * s.complementAreaM2 / s.areaM2 : 0.0,
+               r.complementTriangles);
+  std::fprintf(stderr, "convert: wrote %s (%dx%d, %lld bytes raw, %ju bytes PNG) in %.2f s\n", output.c_str(), r.hni.width,
+               r.hni.height, r.hni.bytesRaw, r.pngBytes, r.seconds());
+}
+
+int fail(const std::string& message, int code) {
+  std::fprintf(stderr, "error: %s\n", message.c_str());
+  return code;
+}
+
+int run(const ConvertCliOptions& o) {
+  {
+    std::ifstream probe(o.input, std::ios::binary);
+    std::error_code ec;
+    if (!probe || fs::is_directory(o.input, ec)) return fail(o.input + ": cannot open", kUnreadable);
+  }
+  converter::ConvertOptions options;
+  options.solid.toleranceM = o.toleranceM;
+  options.solid.angleToleranceDeg = o.angleDeg;
+  options.solid.wedges = !o.noWedges;
+  options.solid.threads = o.threads;
+  options.blocks.automatic = !o.noAutoBlocks;
+  for (const std::string& text : o.blocks) {
+    auto box = parseBox(text);
+    if (!box) return fail(box.error().message, kUsage);
+    options.blocks.manual.push_back(*box);
+  }
+
+  auto obj = converter::readObj(o.input, {o.zUp});
+  if (!obj) return fail(obj.error().message, kInvalid);
+  if (!o.quiet)
+    for (const std::string& w : obj->warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
+
+  const bool toFolder = fs::path(o.output).extension() != ".png";
+  if (!toFolder) {
+    // The whole file is one building.
+    const std::string name = fs::path(o.input).stem().string();
+    converter::Mesh mesh = obj->objects.size() == 1 ? std::move(obj->objects[0]) : converter::mergeObjects(obj->objects, name);
+    mesh.name = name;
+    ProgressBar bar(!o.quiet, name);
+    options.progress = [&](std::string_view phase, double f) { bar.update(phase, f); };
+    auto conversion = converter::convertMesh(std::move(mesh), options);
+    bar.finish();
+    if (!conversion) {
+      const std::string hint = obj->objects.size() > 1 ? " (the file holds " + std::to_string(obj->objects.size()) +
+                                                             " objects: -o FOLDER converts each on its own)"
+                                                       : "";
+      return fail(o.input + ": " + conversion.error().message + hint, kInvalid);
+    }
+    if (Status s = converter::writeConversion(*conversion, o.output, o.complement); !s) return fail(s.error().message, kUnreadable);
+    if (!o.report.empty())
+      if (Status s = writeTextFile(o.report, converter::reportJson(conversion->report)); !s) return fail(s.error().message, kUnreadable);
+    if (!o.quiet) printSummary(conversion->report, o.output);
+    return kOk;
+  }
+
+  // One HNI per object, a complementary mesh beside each that has one, and city.json.
+  if (!o.complement.empty()) return fail("--complement names one file; with -o FOLDER each building's complementary mesh is written into the folder", kUsage);
+  std::error_code ec;
+  fs::create_directories(o.output, ec);
+  if (ec) return fail(o.output + ": cannot create folder (" + ec.message() + ")", kUnreadable);
+  converter::CityManifest city;
+  city.name = fs::path(o.input).stem().string();
+  nlohmann::json reports = nlohmann::json::array();
+  std::set<std::string> used;
+  for (converter::Mesh& mesh : obj->objects) {
+    std::string stem = converter::safeFileStem(mesh.name);
+    for (int k = 2; used.count(stem); ++k) stem = converter::safeFileStem(mesh.name) + "_" + std::to_string(k);
+    used.insert(stem);
+    const std::string name = mesh.name;
+    ProgressBar bar(!o.quiet, name);
+    options.progress = [&](std::string_view phase, double f) { bar.update(phase, f); };
+    auto conversion = converter::convertMesh(std::move(mesh), options);
+    bar.finish();
+    if (!conversion) return fail(o.input + ": object '" + name + "': " + conversion.error().message, kInvalid);
+    const bool hasComplement = !conversion->complement.triangles.empty();
+    const std::string hni = stem + ".png", complement = hasComplement ? stem + ".complement.obj" : "";
+    if (Status s = converter::writeConversion(*conversion, (fs::path(o.output) / hni).string(),
+                                              hasComplement ? (fs::path(o.output) / complement).string() : "");
+        !s)
+      return fail(s.error().message, kUnreadable);
+    city.buildings.push_back({name, hni, complement, conversion->originM, 0.0});
+    reports.push_back(nlohmann::json::parse(converter::reportJson(conversion->report)));
+    if (!o.quiet) printSummary(conversion->report, (fs::path(o.output) / hni).string());
+  }
+  const std::string manifest = (fs::path(o.output) / "city.json").string();
+  if (Status s = writeTextFile(manifest, converter::cityJson(city)); !s) return fail(s.error().message, kUnreadable);
+  if (!o.report.empty())
+    if (Status s = writeTextFile(o.report, nlohmann::json{{"objects", reports}}.dump(2) + "\n"); !s)
+      return fail(s.error().message, kUnreadable);
+  if (!o.quiet) std::fprintf(stderr, "convert: wrote %s (%zu buildings)\n", manifest.c_str(), city.buildings.size());
+  return kOk;
+}
+
+}  // namespace
+
+void addConvertCommand(CLI::App& app, int& exitCode) {
+  auto o = std::make_shared<ConvertCliOptions>();
+  CLI::App* cmd = app.add_subcommand("convert", "Convert an OBJ building (or a file of buildings) into HNI");
+  cmd->add_option("input", o->input, "OBJ file (its MTL files beside it)")->required();
+  cmd->add_option("-o,--output", o->output,
+                  "Output HNI (.png: the whole file as one building), or a folder (one HNI per o/g object and city.json)")
+      ->required();
+  cmd->add_option("--tolerance", o->toleranceM, "Planes closer than this merge; slopes within it become wedges (metres)")
+      ->default_val(0.01)->check(CLI::Range(0.001, 10.0));
+  cmd->add_option("--angle-tolerance", o->angleDeg, "Faces within this many degrees of an axis count as axis-aligned")
+      ->default_val(1.0)->check(CLI::Range(0.0, 10.0));
+  cmd->add_flag("--z-up", o->zUp, "The OBJ is z-up (turned to the y-up world frame)");
+  cmd->add_option("--complement", o->complement, "Write the faces the HNI does not show as OBJ + MTL (world coordinates)");
+  cmd->add_option("--report", o->report, "Write the conversion report as JSON (timings, grid, blocks, bytes, surface fractions)");
+  cmd->add_flag("--quiet", o->quiet, "No progress bar, summary or warnings on stderr");
+  cmd->add_flag("--no-auto-blocks", o->noAutoBlocks, "Do not search for repeated blocks");
+  cmd->add_flag("--no-wedges", o->noWedges, "Leave sloped faces to the complementary mesh instead of fitting wedge cells");
+  cmd->add_option("--block", o->blocks, "Extract this box of cells as a block, x0,y0,z0:x1,y1,z1 in world metres (repeatable)");
+  cmd->add_option("--threads", o->threads, "Worker threads (0: all cores)")->check(CLI::NonNegativeNumber);
+  cmd->footer("Examples:\n  nut convert samples/obj/highrise.obj -o highrise.png --complement highrise-rest.obj --report report.json\n"
+              "  nut convert samples/obj/street.obj -o street/        # one HNI per object + street/city.json");
+  cmd->callback([o, &exitCode] { exitCode = run(*o); });
+}
+
+}  // namespace nut::cli

@@ -1,0 +1,91 @@
+// converter/convert.hpp — the whole mesh-to-NUT conversion (paper section 5) as one call, and its
+// report: check and repair the mesh, solid conversion (solid.hpp), block extraction
+// (blocks.hpp), splitting to the format's limits (assemble.hpp), compilation to an HNI image.
+// docs/CONVERTER.md describes each step and the report's fields.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+#include <converter/blocks.hpp>
+#include <converter/mesh.hpp>
+#include <converter/mesh_check.hpp>
+#include <converter/solid.hpp>
+#include <nut/camera.hpp>
+#include <nut/error.hpp>
+#include <nut/hierarchy.hpp>
+#include <nut/hni.hpp>
+#include <nut/image.hpp>
+
+namespace nut::converter {
+
+struct ConvertOptions {
+  SolidOptions solid;
+  BlockOptions blocks;
+  CompileOptions compile;
+  // Progress of the current phase: its name and the fraction done (0..1). Called from the
+  // calling thread only.
+  std::function<void(std::string_view phase, double fraction)> progress;
+};
+
+struct PhaseTiming {
+  std::string name;
+  double seconds = 0;
+};
+
+// One way of building the hierarchy that the converter tried (convert.cpp keeps the smallest).
+struct VariantReport {
+  std::string name;            // "none", "repeats", "repeats+splits"
+  int blocks = 0;
+  long long bytesRaw = 0;      // the compiled image
+  long long bytesDeflated = 0; // its pixels after zlib's best compression
+  std::string error;           // why it could not be compiled, if it could not
+};
+
+struct ConvertReport {
+  std::string name;
+  std::size_t inputTriangles = 0;
+  MeshCheck check;
+  std::string insideTest;         // how occupancy was decided, in words
+  SolidStats solid;
+  BlockStats blocks;
+  std::string blockMode;              // the variant kept
+  std::vector<VariantReport> variants;
+  int splitBlocks = 0;            // blocks added to stay within the format's per-axis limits
+  HniStats hni;
+  std::uintmax_t pngBytes = 0;    // set by writeConversion
+  std::size_t complementTriangles = 0;
+  glm::dvec3 originM{0.0};
+  std::vector<PhaseTiming> phases;
+  std::vector<std::string> warnings;
+  double seconds() const;
+};
+
+struct Conversion {
+  Hierarchy hierarchy;
+  Image image;
+  glm::dvec3 originM{0.0};  // world position of the root block's minimum corner
+  Mesh complement;          // faces the HNI does not show, world coordinates
+  ConvertReport report;
+};
+
+// Converts one building. The mesh is repaired in place first (mesh_check.hpp). Errors: nothing
+// usable (no triangles after removing degenerate ones), a grid too large for memory, or an
+// HNI beyond the format's limits; each message names the building.
+Result<Conversion> convertMesh(Mesh mesh, const ConvertOptions& options = {});
+
+// Writes the HNI (PNG with the name, generator and world origin in its text chunks) and, when
+// complementPath is not empty, the complementary mesh as OBJ + MTL; both atomically. Sets
+// report.pngBytes.
+Status writeConversion(Conversion& conversion, const std::string& pngPath, const std::string& complementPath);
+
+// The report as JSON (docs/CONVERTER.md, "Report").
+std::string reportJson(const ConvertReport& report);
+
+}  // namespace nut::converter

@@ -1,0 +1,92 @@
+// converter/solid.hpp — solid conversion (paper section 5, first step): a triangle mesh becomes
+// one non-uniform grid G0 of empty, box and wedge cells, plus the complementary mesh of the faces
+// the grid cannot show.
+//
+// 1. Planes. A face whose normal is within `angleToleranceDeg` of an axis is axis-aligned. Per
+//    axis, the faces' coordinate intervals (a face tilted by 0.5 degrees spans several
+//    centimetres) are clustered: intervals closer than `toleranceM` join one cluster, whose
+//    position is the area-weighted mean of its faces (paper: "weighted averages ... where mesh face
+//    areas are used as weights").
+// 2. Grid. The clusters and the mesh's bounding box give each axis's boundaries, snapped to the
+//    encoding's millimetres. A face sloped along one axis only (a roof pitch, a ramp) adds its end
+//    lines, and boundaries where it crosses other boundaries, so that it runs through cells from
+//    corner to corner: those cells become wedges.
+// 3. Occupancy. Lines through the cell centres along one axis are intersected with the faces.
+//    Where a line meets a closed surface (entries and exits balance, merged where the line passes
+//    through a shared edge or vertex), the running count of entries minus exits is the winding
+//    number and decides every cell on it exactly. Elsewhere (holes, open shells, flipped faces) a
+//    cell is inside when the generalized winding number at its centre is at least 1/2 in magnitude
+//    (winding.hpp), which needs no closed mesh and no luck at edges; cells between the same two
+//    crossings share one evaluation, and an ambiguous value (a centre on a surface) is sampled at
+//    four more points. Cells that faces of the complementary mesh cut stay solid only when they
+//    are inside all over, so they never poke through the mesh.
+// 4. Materials. Each axis-aligned face is clipped against the cell faces it covers; where exactly
+//    one side is solid, that cell gains the face's area for the face's material and the cell takes
+//    the material of largest area. Uncovered parts of faces (thin sheets, details below the
+//    tolerance) and every face the grid does not show go to the complementary mesh.
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <functional>
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+#include <converter/mesh.hpp>
+#include <nut/error.hpp>
+#include <nut/hierarchy.hpp>
+
+namespace nut::converter {
+
+struct SolidOptions {
+  double toleranceM = 0.01;         // plane clustering and wedge fitting
+  double angleToleranceDeg = 1.0;   // how far a normal may be from an axis and still count as on it
+  bool wedges = true;               // fit wedge cells to faces sloped along one axis
+  // Keep a slope whose cells mostly became wedges, leaving its faces over the other cells to the
+  // complementary mesh; false: only slopes that became wedges everywhere stay (a smaller grid).
+  bool partialWedges = true;
+  std::size_t maxCells = 64'000'000;  // refuse grids larger than this (memory)
+  int threads = 0;                  // 0: all cores
+  // Called from the calling thread with the fraction of cells classified so far.
+  std::function<void(double)> progress;
+};
+
+struct SolidStats {
+  std::array<int, 3> planes{};        // axis-aligned plane clusters per axis
+  std::array<int, 3> cells{};         // grid cells per axis
+  int slopes = 0;                     // planes sloped along one axis
+  int slopesAsWedges = 0;             // of those, shown by wedge cells
+  long long slopeBoundaries = 0;      // boundaries added so that slopes run corner to corner
+  long long materialBoundaries = 0;   // boundaries added to separate faces of different materials
+  double conflictAreaM2 = 0;          // faces shown in another material than their own (last build)
+  long long solidCells = 0;
+  long long wedgeCells = 0;
+  long long trimmedCells = 0;         // cut by the complementary mesh and not inside all over: empty
+  long long columns = 0;              // lines of cells along the sweep axis
+  long long windingColumns = 0;       // of those, not closed along the line: decided by winding numbers
+  long long windingEvaluations = 0;
+  long long ambiguousCells = 0;       // needed the extra samples
+  int sweepAxis = 0;
+  double areaM2 = 0;                  // whole mesh
+  double nutAreaM2 = 0;               // shown by grid cells (axis-aligned faces and wedges)
+  double complementAreaM2 = 0;        // left to the complementary mesh
+  double hiddenAreaM2 = 0;            // between two solid cells: inner faces nobody sees
+  // Seconds per step: planes and grid, occupancy, wedges, materials; the winding-number tree is
+  // built within the first step that needs it (treeSeconds of it).
+  double planesSeconds = 0, treeSeconds = 0, occupancySeconds = 0, wedgesSeconds = 0, materialsSeconds = 0;
+};
+
+struct SolidGrid {
+  glm::dvec3 originM{0.0};            // world position of the block's minimum corner
+  Block block;                        // boundaries relative to originM, on the millimetre grid
+  std::vector<Material> materials;    // cells index into these (the mesh's materials)
+  Mesh complement;                    // world coordinates, the mesh's materials
+  SolidStats stats;
+};
+
+// Converts one building. Errors: a mesh without triangles, or a grid above options.maxCells
+// (the message gives the grid size and suggests a larger tolerance).
+Result<SolidGrid> buildSolidGrid(const Mesh& mesh, const SolidOptions& options = {});
+
+}  // namespace nut::converter

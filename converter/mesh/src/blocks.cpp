@@ -1,0 +1,511 @@
+// Block extraction and simplification (converter/blocks.hpp), top-down: a block is simplified
+// (identical neighbouring layers of boxes and empty cells merge, which removes the boundaries only
+// other parts needed), then cut along one axis where that pays most:
+//
+//   repeat  a run of layers whose width pattern (within the tolerance) and content repeat with
+//           period p, r times, becomes one cell that redirects to a block of one period, tiled
+//           (wrapped) along the axis; what precedes and follows the run become cells of their own.
+//           This is the paper's block extraction with its "merge aligned touching repeats".
+//   split   the block is cut in two where the two halves need the fewest boundaries between them
+//           (a base whose shop windows share no boundary with the floors above; the four houses
+//           of a street block).
+//
+// The parts are decomposed the same way, recursively, so a floor repeated up a tower is found
+// first and the window bay repeated along the floor inside it. The cost model counts cells (4
+// bytes each in a data component); a cut is taken when it saves more than a new block's header
+// and metadata cost.
+#include <converter/blocks.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <optional>
+#include <string>
+
+#include <nut/format.hpp>
+#include <nut/units.hpp>
+
+namespace nut::converter {
+
+long long estimatedBytes(const Block& b) {
+  long long bytes = 4LL * format::kHeaderPixels;
+  for (int a = 0; a < 3; ++a) bytes += 8LL * std::min(format::kMaxMetadataPixels, b.cellCount(a) + 1);
+  bytes += 4LL * static_cast<long long>(b.cells.size());
+  bytes += 16LL * static_cast<long long>(b.redirections.size());
+  return bytes;
+}
+
+namespace {
+
+// A cut must save at least this many cells: a new block costs a header (12 pixels), three
+// metadata items (2 x (cells + 1) pixels each) and a redirection record (4 pixels).
+constexpr long long kMinSavedCells = 32;
+// Deeper than this the ray casters' 32-level stack would run out (docs/RENDERING.md).
+constexpr int kMaxDepth = 24;
+// Repeats longer than this many layers per period are not searched for.
+constexpr int kMaxPeriod = 64;
+
+// What a part of a block becomes in its parent: a plain cell, or a redirection to a block.
+struct Part {
+  Cell cell;                 // when target is empty
+  std::optional<BlockId> target;
+  std::array<bool, 3> wrap{false, false, false};
+};
+
+// Cells [lo, hi) of b as a block of its own (boundaries relative to its minimum corner).
+Block subBlock(const Block& b, const std::array<int, 3>& lo, const std::array<int, 3>& hi) {
+  Block out;
+  for (int a = 0; a < 3; ++a) {
+    const auto& bounds = b.boundsM[static_cast<std::size_t>(a)];
+    const double base = bounds[static_cast<std::size_t>(lo[static_cast<std::size_t>(a)])];
+    for (int i = lo[static_cast<std::size_t>(a)]; i <= hi[static_cast<std::size_t>(a)]; ++i)
+      out.boundsM[static_cast<std::size_t>(a)].push_back(snapToUnits(bounds[static_cast<std::size_t>(i)] - base));
+  }
+  out.cells.reserve(static_cast<std::size_t>(hi[0] - lo[0]) * static_cast<std::size_t>(hi[1] - lo[1]) * static_cast<std::size_t>(hi[2] - lo[2]));
+  for (int z = lo[2]; z < hi[2]; ++z)
+    for (int y = lo[1]; y < hi[1]; ++y)
+      for (int x = lo[0]; x < hi[0]; ++x) out.cells.push_back(b.cell(x, y, z));
+  out.redirections = b.redirections;  // cells keep their record indices (manual blocks)
+  return out;
+}
+
+// Index steps of b's cells along axis a and the next two axes in cyclic order, so that loops over
+// layers walk the cell array directly.
+struct Strides {
+  std::size_t a, b, c;
+  int nb, nc;
+};
+Strides stridesOf(const Block& block, int a) {
+  const std::array<std::size_t, 3> step{1, static_cast<std::size_t>(block.cellCount(0)),
+                                        static_cast<std::size_t>(block.cellCount(0)) * static_cast<std::size_t>(block.cellCount(1))};
+  return {step[static_cast<std::size_t>(a)], step[static_cast<std::size_t>((a + 1) % 3)], step[static_cast<std::size_t>((a + 2) % 3)],
+          block.cellCount((a + 1) % 3), block.cellCount((a + 2) % 3)};
+}
+
+// A box or an empty cell looks the same however it is stretched; other solids do not.
+bool stretchable(const Cell& c) {
+  return c.kind == CellKind::Empty || (c.kind == CellKind::Solid && c.solid.index == 0);
+}
+
+bool sameLayers(const Block& b, const Strides& st, int i, int j) {
+  const Cell* x = b.cells.data() + static_cast<std::size_t>(i) * st.a;
+  const Cell* y = b.cells.data() + static_cast<std::size_t>(j) * st.a;
+  for (int k = 0; k < st.nc; ++k)
+    for (int l = 0; l < st.nb; ++l) {
+      const std::size_t o = static_cast<std::size_t>(k) * st.c + static_cast<std::size_t>(l) * st.b;
+      if (!(x[o] == y[o])) return false;
+    }
+  return true;
+}
+
+// Whether layers i and i + 1 hold the same boxes and empty cells.
+bool mergeableLayers(const Block& b, const Strides& st, int i) {
+  const Cell* x = b.cells.data() + static_cast<std::size_t>(i) * st.a;
+  const Cell* y = x + st.a;
+  for (int k = 0; k < st.nc; ++k)
+    for (int l = 0; l < st.nb; ++l) {
+      const std::size_t o = static_cast<std::size_t>(k) * st.c + static_cast<std::size_t>(l) * st.b;
+      if (!(x[o] == y[o]) || !stretchable(x[o])) return false;
+    }
+  return true;
+}
+
+// Merges neighbouring layers that hold the same boxes and empty cells (their boundary is needed
+// by nothing inside this block).
+void simplify(Block& b) {
+  for (bool changed = true; changed;) {
+    changed = false;
+    for (int a = 0; a < 3; ++a) {
+      const int n = b.cellCount(a);
+      if (n < 2) continue;
+      std::vector<bool> keepBoundary(static_cast<std::size_t>(n + 1), true);  // boundary i sits before layer i
+      const Strides st = stridesOf(b, a);
+      for (int i = 1; i < n; ++i) keepBoundary[static_cast<std::size_t>(i)] = !mergeableLayers(b, st, i - 1);
+      if (std::all_of(keepBoundary.begin(), keepBoundary.end(), [](bool k) { return k; })) continue;
+      // Rebuild with the kept layers (the first layer of each merged run stands for it).
+      std::vector<int> layers;
+      std::vector<double> bounds;
+      for (int i = 0; i <= n; ++i)
+        if (keepBoundary[static_cast<std::size_t>(i)]) {
+          bounds.push_back(b.boundsM[static_cast<std::size_t>(a)][static_cast<std::size_t>(i)]);
+          if (i < n) layers.push_back(i);
+        }
+      Block out;
+      out.boundsM = b.boundsM;
+      out.boundsM[static_cast<std::size_t>(a)] = bounds;
+      out.redirections = b.redirections;
+      out.cells.resize(static_cast<std::size_t>(out.cellCount(0)) * static_cast<std::size_t>(out.cellCount(1)) * static_cast<std::size_t>(out.cellCount(2)));
+      for (int z = 0; z < out.cellCount(2); ++z)
+        for (int y = 0; y < out.cellCount(1); ++y)
+          for (int x = 0; x < out.cellCount(0); ++x) {
+            std::array<int, 3> src{x, y, z};
+            src[static_cast<std::size_t>(a)] = layers[static_cast<std::size_t>(src[static_cast<std::size_t>(a)])];
+            out.cell(x, y, z) = b.cell(src[0], src[1], src[2]);
+          }
+      b = std::move(out);
+      changed = true;
+    }
+  }
+}
+
+std::optional<Cell> uniformCell(const Block& b) {
+  if (b.cells.empty()) return Cell::empty();
+  const Cell& first = b.cells.front();
+  if (!stretchable(first)) return std::nullopt;
+  for (const Cell& c : b.cells)
+    if (!(c == first)) return std::nullopt;
+  return first;
+}
+
+struct Run {
+  int axis = 0, start = 0, period = 0, count = 0;
+  long long savedCells = 0;
+};
+
+// The repeat along axis a that removes the most cells: layers [start, start + period * count)
+// where layer i and layer i + period hold the same cells and have widths within the tolerance,
+// and the whole run is count periods long within the tolerance.
+std::optional<Run> findRun(const Block& b, int a, double tolerance) {
+  const int n = b.cellCount(a);
+  const long long slice = static_cast<long long>(b.cellCount((a + 1) % 3)) * b.cellCount((a + 2) % 3);
+  const auto& bounds = b.boundsM[static_cast<std::size_t>(a)];
+  const auto width = [&](int i) { return bounds[static_cast<std::size_t>(i + 1)] - bounds[static_cast<std::size_t>(i)]; };
+  // Equal layers, found once: cls[i] is the first layer equal to layer i (hashes first).
+  const Strides st = stridesOf(b, a);
+  std::vector<std::uint64_t> hash(static_cast<std::size_t>(n), 1469598103934665603ull);
+  for (int i = 0; i < n; ++i)
+    for (int k = 0; k < st.nc; ++k)
+      for (int l = 0; l < st.nb; ++l) {
+        const Cell& c = b.cells[static_cast<std::size_t>(i) * st.a + static_cast<std::size_t>(k) * st.c + static_cast<std::size_t>(l) * st.b];
+        const std::uint64_t v = static_cast<std::uint64_t>(c.kind) | static_cast<std::uint64_t>(c.solid.index) << 8 |
+                                static_cast<std::uint64_t>(c.material) << 16 | static_cast<std::uint64_t>(c.redirection) << 32;
+        hash[static_cast<std::size_t>(i)] = (hash[static_cast<std::size_t>(i)] ^ v) * 1099511628211ull;
+      }
+  std::vector<int> cls(static_cast<std::size_t>(n));
+  for (int i = 0; i < n; ++i) {
+    cls[static_cast<std::size_t>(i)] = i;
+    for (int j = 0; j < i; ++j)
+      if (cls[static_cast<std::size_t>(j)] == j && hash[static_cast<std::size_t>(i)] == hash[static_cast<std::size_t>(j)] && sameLayers(b, st, i, j)) {
+        cls[static_cast<std::size_t>(i)] = j;
+        break;
+      }
+  }
+  std::optional<Run> best;
+  for (int p = 1; p <= std::min(kMaxPeriod, n / 2); ++p) {
+    int i = 0;
+    while (i + p < n) {
+      // Longest stretch from i where layer k matches layer k + p.
+      int k = i;
+      while (k + p < n && cls[static_cast<std::size_t>(k)] == cls[static_cast<std::size_t>(k + p)] &&
+             std::abs(width(k) - width(k + p)) <= tolerance)
+        ++k;
+      const int matched = k - i;  // layers i .. k-1 match their successors
+      if (matched >= p) {
+        int count = matched / p + 1;
+        // The run must be count periods long, or the tiling drifts against the content.
+        const double period = bounds[static_cast<std::size_t>(i + p)] - bounds[static_cast<std::size_t>(i)];
+        while (count >= 2 && std::abs(bounds[static_cast<std::size_t>(i + p * count)] - bounds[static_cast<std::size_t>(i)] - count * period) > tolerance)
+          --count;
+        const long long saved = static_cast<long long>(p) * (count - 1) * slice;
+        if (count >= 2 && (!best || saved > best->savedCells)) best = Run{a, i, p, count, saved};
+      }
+      i = std::max(k, i + 1);
+    }
+  }
+  return best;
+}
+
+struct Cut {
+  int axis = 0, at = 0;
+  long long savedCells = 0;
+};
+
+// The cut in two along any axis that leaves the fewest cells, counting for each half only the
+// boundaries of the other two axes that some layer of the half needs.
+std::optional<Cut> findCut(const Block& b) {
+  std::optional<Cut> best;
+  const long long total = static_cast<long long>(b.cells.size());
+  for (int a = 0; a < 3; ++a) {
+    const int n = b.cellCount(a);
+    if (n < 2) continue;
+    // need[o][i][j]: layer i needs boundary j of the o-th other axis (the cells on its two sides
+    // differ, or are shaped by their cell).
+    const Strides st = stridesOf(b, a);
+    std::array<std::vector<std::vector<bool>>, 2> need;
+    for (int o = 0; o < 2; ++o) {
+      const std::size_t stepO = o == 0 ? st.b : st.c, stepP = o == 0 ? st.c : st.b;
+      const int nO = o == 0 ? st.nb : st.nc, nP = o == 0 ? st.nc : st.nb;
+      need[static_cast<std::size_t>(o)].assign(static_cast<std::size_t>(n), std::vector<bool>(static_cast<std::size_t>(std::max(nO - 1, 0)), false));
+      for (int i = 0; i < n; ++i) {
+        const Cell* layer = b.cells.data() + static_cast<std::size_t>(i) * st.a;
+        for (int j = 1; j < nO; ++j) {
+          const Cell* x = layer + static_cast<std::size_t>(j - 1) * stepO;
+          const Cell* y = x + stepO;
+          for (int k = 0; k < nP; ++k) {
+            const std::size_t off = static_cast<std::size_t>(k) * stepP;
+            if (!(x[off] == y[off]) || !stretchable(x[off])) {
+              need[static_cast<std::size_t>(o)][static_cast<std::size_t>(i)][static_cast<std::size_t>(j - 1)] = true;
+              break;
+            }
+          }
+        }
+      }
+    }
+    // Needed boundaries of the halves [0, c) and [c, n), per other axis.
+    std::array<std::vector<int>, 2> left, right;
+    for (int o = 0; o < 2; ++o) {
+      const std::size_t m = need[static_cast<std::size_t>(o)][0].size();
+      std::vector<bool> acc(m, false);
+      left[static_cast<std::size_t>(o)].assign(static_cast<std::size_t>(n + 1), 0);
+      int count = 0;
+      for (int i = 0; i < n; ++i) {
+        for (std::size_t j = 0; j < m; ++j)
+          if (need[static_cast<std::size_t>(o)][static_cast<std::size_t>(i)][j] && !acc[j]) {
+            acc[j] = true;
+            ++count;
+          }
+        left[static_cast<std::size_t>(o)][static_cast<std::size_t>(i + 1)] = count;
+      }
+      std::fill(acc.begin(), acc.end(), false);
+      right[static_cast<std::size_t>(o)].assign(static_cast<std::size_t>(n + 1), 0);
+      count = 0;
+      for (int i = n - 1; i >= 0; --i) {
+        for (std::size_t j = 0; j < m; ++j)
+          if (need[static_cast<std::size_t>(o)][static_cast<std::size_t>(i)][j] && !acc[j]) {
+            acc[j] = true;
+            ++count;
+          }
+        right[static_cast<std::size_t>(o)][static_cast<std::size_t>(i)] = count;
+      }
+    }
+    for (int c = 1; c < n; ++c) {
+      const long long l = static_cast<long long>(c) * (left[0][static_cast<std::size_t>(c)] + 1) * (left[1][static_cast<std::size_t>(c)] + 1);
+      const long long r = static_cast<long long>(n - c) * (right[0][static_cast<std::size_t>(c)] + 1) * (right[1][static_cast<std::size_t>(c)] + 1);
+      const long long saved = total - l - r;
+      if (!best || saved > best->savedCells) best = Cut{a, c, saved};
+    }
+  }
+  return best;
+}
+
+class Decomposer {
+ public:
+  Decomposer(Hierarchy& h, const BlockOptions& options, BlockStats& stats) : h_(h), options_(options), stats_(stats) {}
+
+  // What block b becomes in its parent's cell.
+  Part decompose(Block b, int depth) {
+    simplify(b);
+    if (auto uniform = uniformCell(b)) return {*uniform, std::nullopt, {false, false, false}};
+    if (depth >= kMaxDepth || b.cells.size() <= static_cast<std::size_t>(kMinSavedCells)) return emit(std::move(b));
+
+    std::optional<Run> run;
+    for (int a = 0; a < 3; ++a)
+      if (auto r = findRun(b, a, options_.toleranceM); r && (!run || r->savedCells > run->savedCells)) run = r;
+    const std::optional<Cut> cut = options_.cuts ? findCut(b) : std::nullopt;
+    const long long runSaved = run ? run->savedCells : 0, cutSaved = cut ? cut->savedCells : 0;
+    if (std::max(runSaved, cutSaved) < kMinSavedCells) return emit(std::move(b));
+    if (runSaved >= cutSaved) return repeat(b, *run, depth);
+    return split(b, *cut, depth);
+  }
+
+ private:
+  Part emit(Block b) {
+    const BlockId id = h_.addBlock(std::move(b));
+    return {Cell::empty(), id, {false, false, false}};
+  }
+
+  // A parent stacking `parts` along axis a at `bounds` (the other axes one cell each).
+  Part stack(const Block& b, int a, const std::vector<double>& bounds, const std::vector<Part>& parts) {
+    Block parent;
+    for (int o = 0; o < 3; ++o) parent.boundsM[static_cast<std::size_t>(o)] = {0.0, b.sizeM()[o]};
+    parent.boundsM[static_cast<std::size_t>(a)] = bounds;
+    parent.cells.resize(parts.size());
+    for (std::size_t i = 0; i < parts.size(); ++i) {
+      if (!parts[i].target) {
+        parent.cells[i] = parts[i].cell;
+        continue;
+      }
+      parent.cells[i] = Cell::redirect(static_cast<std::uint32_t>(parent.redirections.size()));
+      parent.redirections.push_back(Redirection{*parts[i].target, glm::dvec3(0.0), Rotation{}, parts[i].wrap});
+    }
+    return emit(std::move(parent));
+  }
+
+  std::array<int, 3> full(const Block& b) const { return {b.cellCount(0), b.cellCount(1), b.cellCount(2)}; }
+
+  Part repeat(const Block& b, const Run& run, int depth) {
+    const int a = run.axis, end = run.start + run.period * run.count;
+    const auto& bounds = b.boundsM[static_cast<std::size_t>(a)];
+    std::vector<double> cuts;
+    std::vector<Part> parts;
+    cuts.push_back(0.0);
+    std::array<int, 3> lo{0, 0, 0}, hi = full(b);
+    if (run.start > 0) {
+      hi[static_cast<std::size_t>(a)] = run.start;
+      parts.push_back(decompose(subBlock(b, lo, hi), depth + 1));
+      cuts.push_back(bounds[static_cast<std::size_t>(run.start)]);
+    }
+    lo[static_cast<std::size_t>(a)] = run.start;
+    hi[static_cast<std::size_t>(a)] = run.start + run.period;
+    Part period = decompose(subBlock(b, lo, hi), depth + 1);
+    if (!period.target) period = emit(subBlock(b, lo, hi));  // a uniform period merges in simplify; kept for safety
+    period.wrap[static_cast<std::size_t>(a)] = true;
+    parts.push_back(period);
+    cuts.push_back(bounds[static_cast<std::size_t>(end)]);
+    if (end < b.cellCount(a)) {
+      lo[static_cast<std::size_t>(a)] = end;
+      hi[static_cast<std::size_t>(a)] = b.cellCount(a);
+      parts.push_back(decompose(subBlock(b, lo, hi), depth + 1));
+      cuts.push_back(bounds.back());
+    }
+    ExtractedBlock found;
+    found.block = *period.target;
+    const Block& target = h_.blocks[*period.target];
+    found.cells = {target.cellCount(0), target.cellCount(1), target.cellCount(2)};
+    found.sizeM = target.sizeM();
+    found.instances = run.count;
+    found.wrap[static_cast<std::size_t>(a)] = true;
+    found.savedBytes = 4 * run.savedCells;
+    stats_.found.push_back(found);
+    return stack(b, a, cuts, parts);
+  }
+
+  Part split(const Block& b, const Cut& cut, int depth) {
+    const int a = cut.axis;
+    std::array<int, 3> lo{0, 0, 0}, hi = full(b);
+    hi[static_cast<std::size_t>(a)] = cut.at;
+    const Part first = decompose(subBlock(b, lo, hi), depth + 1);
+    lo[static_cast<std::size_t>(a)] = cut.at;
+    hi[static_cast<std::size_t>(a)] = b.cellCount(a);
+    const Part second = decompose(subBlock(b, lo, hi), depth + 1);
+    const auto& bounds = b.boundsM[static_cast<std::size_t>(a)];
+    return stack(b, a, {0.0, bounds[static_cast<std::size_t>(cut.at)], bounds.back()}, {first, second});
+  }
+
+  Hierarchy& h_;
+  const BlockOptions& options_;
+  BlockStats& stats_;
+};
+
+// The cells of g0 that a world box covers (snapped outwards to whole cells), or nullopt when it
+// misses g0.
+std::optional<std::pair<std::array<int, 3>, std::array<int, 3>>> cellRange(const Block& g0, const WorldBox& box,
+                                                                          const glm::dvec3& originM) {
+  std::array<int, 3> lo{}, hi{};
+  for (int a = 0; a < 3; ++a) {
+    const auto& bounds = g0.boundsM[static_cast<std::size_t>(a)];
+    const double l = box.min[a] - originM[a], u = box.max[a] - originM[a];
+    if (u <= 0 || l >= bounds.back()) return std::nullopt;
+    lo[static_cast<std::size_t>(a)] = std::max(0, static_cast<int>(std::upper_bound(bounds.begin(), bounds.end(), l) - bounds.begin()) - 1);
+    hi[static_cast<std::size_t>(a)] = std::min(g0.cellCount(a), static_cast<int>(std::lower_bound(bounds.begin(), bounds.end(), u) - bounds.begin()));
+    if (hi[static_cast<std::size_t>(a)] <= lo[static_cast<std::size_t>(a)]) return std::nullopt;
+  }
+  return std::make_pair(lo, hi);
+}
+
+// The paper's user-selected block: the cells the box covers become block S; every place of g0
+// with the same width pattern (within the tolerance) and the same cells redirects to S, one
+// record per cell of S (offset = the cell's place inside S), so later repeats of the places are
+// identical and the automatic search can tile them.
+void extractManual(Hierarchy& h, Block& g0, const WorldBox& box, const glm::dvec3& originM, double tolerance,
+                   BlockStats& stats) {
+  const auto range = cellRange(g0, box, originM);
+  if (!range) return;
+  const auto [lo, hi] = *range;
+  const std::array<int, 3> extent{hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]};
+  const Block pattern = subBlock(g0, lo, hi);
+  const auto width = [](const Block& b, int a, int i) {
+    return b.boundsM[static_cast<std::size_t>(a)][static_cast<std::size_t>(i + 1)] - b.boundsM[static_cast<std::size_t>(a)][static_cast<std::size_t>(i)];
+  };
+  const auto matchesAt = [&](const std::array<int, 3>& at) {
+    for (int a = 0; a < 3; ++a) {
+      if (at[static_cast<std::size_t>(a)] + extent[static_cast<std::size_t>(a)] > g0.cellCount(a)) return false;
+      for (int i = 0; i < extent[static_cast<std::size_t>(a)]; ++i)
+        if (std::abs(width(g0, a, at[static_cast<std::size_t>(a)] + i) - width(pattern, a, i)) > tolerance) return false;
+    }
+    for (int z = 0; z < extent[2]; ++z)
+      for (int y = 0; y < extent[1]; ++y)
+        for (int x = 0; x < extent[0]; ++x)
+          if (!(g0.cell(at[0] + x, at[1] + y, at[2] + z) == pattern.cell(x, y, z))) return false;
+    return true;
+  };
+  std::vector<std::array<int, 3>> places;
+  for (int z = 0; z + extent[2] <= g0.cellCount(2); ++z)
+    for (int y = 0; y + extent[1] <= g0.cellCount(1); ++y)
+      for (int x = 0; x + extent[0] <= g0.cellCount(0); ++x) {
+        const std::array<int, 3> at{x, y, z};
+        const bool overlaps = std::any_of(places.begin(), places.end(), [&](const std::array<int, 3>& p) {
+          for (int a = 0; a < 3; ++a)
+            if (at[static_cast<std::size_t>(a)] >= p[static_cast<std::size_t>(a)] + extent[static_cast<std::size_t>(a)] ||
+                p[static_cast<std::size_t>(a)] >= at[static_cast<std::size_t>(a)] + extent[static_cast<std::size_t>(a)])
+              return false;
+          return true;
+        });
+        if (!overlaps && matchesAt(at)) places.push_back(at);
+      }
+  const BlockId target = h.addBlock(pattern);
+  const auto first = static_cast<std::uint32_t>(g0.redirections.size());
+  for (int z = 0; z < extent[2]; ++z)
+    for (int y = 0; y < extent[1]; ++y)
+      for (int x = 0; x < extent[0]; ++x)
+        g0.redirections.push_back(Redirection{target,
+                                              -glm::dvec3(pattern.boundsM[0][static_cast<std::size_t>(x)], pattern.boundsM[1][static_cast<std::size_t>(y)],
+                                                          pattern.boundsM[2][static_cast<std::size_t>(z)]),
+                                              Rotation{}, {false, false, false}});
+  for (const auto& at : places)
+    for (int z = 0; z < extent[2]; ++z)
+      for (int y = 0; y < extent[1]; ++y)
+        for (int x = 0; x < extent[0]; ++x)
+          g0.cell(at[0] + x, at[1] + y, at[2] + z) =
+              Cell::redirect(first + static_cast<std::uint32_t>(x + extent[0] * (y + extent[1] * z)));
+  ExtractedBlock found;
+  found.block = target;
+  found.cells = extent;
+  found.sizeM = pattern.sizeM();
+  found.instances = static_cast<int>(places.size());
+  found.manual = true;
+  stats.found.push_back(found);
+}
+
+long long totalBytes(const Hierarchy& h) {
+  long long sum = 0;
+  for (const Block& b : h.blocks) sum += estimatedBytes(b);
+  return sum;
+}
+
+long long totalCells(const Hierarchy& h) {
+  long long sum = 0;
+  for (const Block& b : h.blocks) sum += static_cast<long long>(b.cells.size());
+  return sum;
+}
+
+}  // namespace
+
+Result<Hierarchy> buildHierarchy(Block g0, std::vector<Material> materials, const glm::dvec3& originM,
+                                 const BlockOptions& options, BlockStats& stats) {
+  Hierarchy h;
+  h.materials = std::move(materials);
+  stats.cellsBefore = static_cast<long long>(g0.cells.size());
+  stats.bytesBefore = estimatedBytes(g0);
+  for (const WorldBox& box : options.manual) extractManual(h, g0, box, originM, options.toleranceM, stats);
+  if (!options.automatic) {
+    simplify(g0);
+    h.root = h.addBlock(std::move(g0));
+  } else {
+    const glm::dvec3 size = g0.sizeM();
+    Decomposer decomposer(h, options, stats);
+    const Part root = decomposer.decompose(std::move(g0), 0);
+    if (root.target) {
+      h.root = *root.target;
+    } else {
+      // The whole building is one box (or nothing): a block of one cell.
+      Block one = Block::fromSizes({{{size.x}, {size.y}, {size.z}}});
+      one.cells[0] = root.cell;
+      h.root = h.addBlock(std::move(one));
+    }
+  }
+  stats.cellsAfter = totalCells(h);
+  stats.bytesAfter = totalBytes(h);
+  return h;
+}
+
+}  // namespace nut::converter

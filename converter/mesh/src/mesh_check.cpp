@@ -1,0 +1,275 @@
+// Mesh checks and orientation repair. This is one of the two translation units that include CGAL
+// (its headers cost about 25 s and 2 GB to compile, docs/CONVERTER.md).
+#include <converter/mesh_check.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <numeric>
+#include <unordered_map>
+
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Polygon_mesh_processing/orient_polygon_soup.h>
+
+#include <glm/geometric.hpp>
+
+namespace nut::converter {
+
+namespace {
+
+using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
+using Point = Kernel::Point_3;
+using glm::dvec3;
+
+// Altitude below which a triangle counts as a sliver (it keeps its area, but its normal is noisy).
+constexpr double kSliverAltitudeM = 1e-4;
+// ... and pieces whose volume is below this times area^1.5 (a closed cube has 0.068).
+constexpr double kOrientOpenPieceMinVolume = 0.01;
+
+struct PositionHash {
+  std::size_t operator()(const dvec3& p) const {
+    std::uint64_t h = 1469598103934665603ull;
+    for (int i = 0; i < 3; ++i) {
+      std::uint64_t bits;
+      const double v = p[i] == 0.0 ? 0.0 : p[i];  // -0 and +0 are one position
+      std::memcpy(&bits, &v, sizeof bits);
+      h = (h ^ bits) * 1099511628211ull;
+    }
+    return static_cast<std::size_t>(h ^ (h >> 29));
+  }
+};
+
+// Positions welded by exact equality: triangle corners as ids of distinct positions.
+struct Welded {
+  std::vector<dvec3> points;
+  std::vector<std::array<std::uint32_t, 3>> triangles;
+};
+
+Welded weld(const Mesh& mesh) {
+  Welded w;
+  std::unordered_map<dvec3, std::uint32_t, PositionHash> ids;
+  ids.reserve(mesh.positions.size());
+  std::vector<std::uint32_t> idOf(mesh.positions.size());
+  for (std::size_t v = 0; v < mesh.positions.size(); ++v) {
+    auto [it, inserted] = ids.try_emplace(mesh.positions[v], static_cast<std::uint32_t>(w.points.size()));
+    if (inserted) w.points.push_back(mesh.positions[v]);
+    idOf[v] = it->second;
+  }
+  w.triangles.reserve(mesh.triangles.size());
+  for (const auto& t : mesh.triangles) w.triangles.push_back({idOf[t[0]], idOf[t[1]], idOf[t[2]]});
+  return w;
+}
+
+struct UnionFind {
+  std::vector<std::uint32_t> parent;
+  explicit UnionFind(std::size_t n) : parent(n) { std::iota(parent.begin(), parent.end(), 0u); }
+  std::uint32_t find(std::uint32_t x) {
+    while (parent[x] != x) x = parent[x] = parent[parent[x]];
+    return x;
+  }
+  void unite(std::uint32_t a, std::uint32_t b) { parent[find(a)] = find(b); }
+};
+
+// Whether b is a cyclic rotation of a (same orientation) or of a reversed (flipped).
+enum class Turn { Same, Flipped, Other };
+Turn compareCorners(const std::array<std::uint32_t, 3>& a, const std::array<std::uint32_t, 3>& b) {
+  for (int r = 0; r < 3; ++r) {
+    if (a[0] == b[r] && a[1] == b[(r + 1) % 3] && a[2] == b[(r + 2) % 3]) return Turn::Same;
+    if (a[0] == b[r] && a[1] == b[(r + 2) % 3] && a[2] == b[(r + 1) % 3]) return Turn::Flipped;
+  }
+  return Turn::Other;
+}
+
+// Per undirected edge of the welded mesh: the faces using it and the way they run it.
+struct EdgeUse {
+  std::uint64_t key;   // lo << 32 | hi
+  std::uint32_t face;
+  bool forward;        // the face runs lo -> hi
+};
+
+std::vector<EdgeUse> edgeUses(const Welded& w) {
+  std::vector<EdgeUse> uses;
+  uses.reserve(3 * w.triangles.size());
+  for (std::size_t f = 0; f < w.triangles.size(); ++f)
+    for (int e = 0; e < 3; ++e) {
+      const std::uint32_t a = w.triangles[f][static_cast<std::size_t>(e)], b = w.triangles[f][static_cast<std::size_t>((e + 1) % 3)];
+      const std::uint32_t lo = std::min(a, b), hi = std::max(a, b);
+      uses.push_back({static_cast<std::uint64_t>(lo) << 32 | hi, static_cast<std::uint32_t>(f), a == lo});
+    }
+  std::sort(uses.begin(), uses.end(), [](const EdgeUse& x, const EdgeUse& y) { return x.key < y.key; });
+  return uses;
+}
+
+// Calls f(first, last) for each run of uses of one edge.
+template <typename F>
+void forEachEdge(const std::vector<EdgeUse>& uses, F&& f) {
+  for (std::size_t i = 0; i < uses.size();) {
+    std::size_t j = i + 1;
+    while (j < uses.size() && uses[j].key == uses[i].key) ++j;
+    f(i, j);
+    i = j;
+  }
+}
+
+}  // namespace
+
+std::string MeshCheck::summary() const {
+  std::string s = std::to_string(triangles) + " triangles, " + std::to_string(vertices) + " vertices, " +
+                  std::to_string(components) + " pieces; " +
+                  (closed() ? std::string("closed") : std::string("open: ") + std::to_string(boundaryEdges) +
+                                                          " boundary edges, " + std::to_string(nonManifoldEdges) +
+                                                          " edges shared by more than two faces");
+  if (degenerate) s += "; " + std::to_string(degenerate) + " degenerate faces removed";
+  if (slivers) s += "; " + std::to_string(slivers) + " slivers";
+  if (duplicateFaces) s += "; " + std::to_string(duplicateFaces) + " duplicate faces";
+  if (inconsistentEdges) s += "; " + std::to_string(inconsistentEdges) + " edges with inconsistent orientation";
+  if (flippedTriangles) s += "; " + std::to_string(flippedTriangles) + " faces turned outwards";
+  return s;
+}
+
+MeshCheck checkAndRepair(Mesh& mesh) {
+  MeshCheck check;
+  check.triangles = mesh.triangles.size();
+  Welded w = weld(mesh);
+
+  // Degenerate faces go (exact predicate); slivers and duplicates are counted.
+  {
+    std::vector<std::uint8_t> keep(w.triangles.size(), 1);
+    std::vector<std::array<std::uint32_t, 3>> sorted;
+    sorted.reserve(w.triangles.size());
+    for (std::size_t f = 0; f < w.triangles.size(); ++f) {
+      const auto& t = w.triangles[f];
+      const dvec3 &a = w.points[t[0]], &b = w.points[t[1]], &c = w.points[t[2]];
+      if (CGAL::collinear(Point(a.x, a.y, a.z), Point(b.x, b.y, b.z), Point(c.x, c.y, c.z))) {
+        keep[f] = 0;
+        ++check.degenerate;
+        continue;
+      }
+      const double twiceArea = glm::length(glm::cross(b - a, c - a));
+      const double longest = std::max({glm::length(b - a), glm::length(c - b), glm::length(a - c)});
+      if (twiceArea / longest < kSliverAltitudeM) ++check.slivers;
+      auto s = t;
+      std::sort(s.begin(), s.end());
+      sorted.push_back(s);
+    }
+    std::sort(sorted.begin(), sorted.end());
+    for (std::size_t i = 1; i < sorted.size(); ++i) check.duplicateFaces += sorted[i] == sorted[i - 1];
+    if (check.degenerate > 0) {
+      std::size_t out = 0;
+      for (std::size_t f = 0; f < keep.size(); ++f)
+        if (keep[f]) {
+          mesh.triangles[out] = mesh.triangles[f];
+          mesh.triangleMaterial[out] = mesh.triangleMaterial[f];
+          w.triangles[out] = w.triangles[f];
+          ++out;
+        }
+      mesh.triangles.resize(out);
+      mesh.triangleMaterial.resize(out);
+      w.triangles.resize(out);
+    }
+  }
+  {
+    std::vector<std::uint8_t> used(w.points.size(), 0);
+    for (const auto& t : w.triangles)
+      for (std::uint32_t v : t) used[v] = 1;
+    check.vertices = static_cast<std::size_t>(std::count(used.begin(), used.end(), 1));
+  }
+
+  // Edge statistics.
+  std::vector<EdgeUse> uses = edgeUses(w);
+  forEachEdge(uses, [&](std::size_t i, std::size_t j) {
+    if (j - i == 1) ++check.boundaryEdges;
+    else if (j - i > 2) ++check.nonManifoldEdges;
+    else if (uses[i].forward == uses[i + 1].forward) ++check.inconsistentEdges;
+  });
+
+  // Consistent orientation: CGAL reverses polygons so that manifold neighbours agree (it
+  // duplicates points where the surface cannot be made manifold, which we map back).
+  std::vector<std::uint8_t> flipped(w.triangles.size(), 0);
+  if (check.inconsistentEdges > 0) {
+    std::vector<Point> points;
+    points.reserve(w.points.size());
+    for (const dvec3& p : w.points) points.emplace_back(p.x, p.y, p.z);
+    std::vector<std::array<std::size_t, 3>> polygons;
+    polygons.reserve(w.triangles.size());
+    for (const auto& t : w.triangles) polygons.push_back({t[0], t[1], t[2]});
+    CGAL::Polygon_mesh_processing::orient_polygon_soup(points, polygons);
+    std::unordered_map<dvec3, std::uint32_t, PositionHash> ids;
+    for (std::size_t v = 0; v < w.points.size(); ++v) ids.emplace(w.points[v], static_cast<std::uint32_t>(v));
+    const auto original = [&](std::size_t v) {
+      if (v < w.points.size()) return static_cast<std::uint32_t>(v);
+      const Point& p = points[v];
+      return ids.at(dvec3(p.x(), p.y(), p.z()));
+    };
+    if (polygons.size() == w.triangles.size()) {
+      for (std::size_t f = 0; f < polygons.size(); ++f) {
+        const std::array<std::uint32_t, 3> turned{original(polygons[f][0]), original(polygons[f][1]), original(polygons[f][2])};
+        if (compareCorners(w.triangles[f], turned) == Turn::Flipped) flipped[f] = 1;
+      }
+    }
+  }
+  const auto apply = [&](std::size_t f) {
+    std::swap(w.triangles[f][1], w.triangles[f][2]);
+    std::swap(mesh.triangles[f][1], mesh.triangles[f][2]);
+  };
+  for (std::size_t f = 0; f < flipped.size(); ++f)
+    if (flipped[f]) apply(f);
+
+  // Pieces through manifold edges whose two faces now agree; each turned outwards.
+  UnionFind pieces(w.triangles.size());
+  std::vector<std::uint8_t> open(w.triangles.size(), 0);
+  uses = edgeUses(w);
+  forEachEdge(uses, [&](std::size_t i, std::size_t j) {
+    if (j - i == 2 && uses[i].forward != uses[i + 1].forward) {
+      pieces.unite(uses[i].face, uses[i + 1].face);
+    } else {
+      for (std::size_t k = i; k < j; ++k) open[uses[k].face] = 1;
+    }
+  });
+  std::vector<std::uint32_t> root(w.triangles.size());
+  std::unordered_map<std::uint32_t, std::size_t> pieceIndex;
+  for (std::size_t f = 0; f < w.triangles.size(); ++f) {
+    root[f] = pieces.find(static_cast<std::uint32_t>(f));
+    pieceIndex.try_emplace(root[f], pieceIndex.size());
+  }
+  check.components = pieceIndex.size();
+  struct Piece {
+    double area = 0;
+    dvec3 weightedCentre{0.0};
+    double volume = 0;
+    double turnedArea = 0;  // area of faces the consistency repair turned over
+    bool open = false;
+  };
+  std::vector<Piece> info(pieceIndex.size());
+  for (std::size_t f = 0; f < w.triangles.size(); ++f) {
+    const auto& t = w.triangles[f];
+    const dvec3 &a = w.points[t[0]], &b = w.points[t[1]], &c = w.points[t[2]];
+    const double area = 0.5 * glm::length(glm::cross(b - a, c - a));
+    Piece& p = info[pieceIndex[root[f]]];
+    p.area += area;
+    p.weightedCentre += area * (a + b + c) / 3.0;
+    p.turnedArea += flipped[f] ? area : 0.0;
+    p.open = p.open || open[f];
+  }
+  for (std::size_t f = 0; f < w.triangles.size(); ++f) {
+    Piece& p = info[pieceIndex[root[f]]];
+    const dvec3 centre = p.weightedCentre / p.area;  // the volume of a closed piece does not depend on it
+    const auto& t = w.triangles[f];
+    p.volume += glm::dot(w.points[t[0]] - centre, glm::cross(w.points[t[1]] - centre, w.points[t[2]] - centre)) / 6.0;
+  }
+  // A closed piece faces outwards when its volume is positive. An open one has no inside to go
+  // by (a roof tray between parapets has a negative volume and is right), so it keeps the
+  // orientation most of its area came with.
+  for (std::size_t f = 0; f < w.triangles.size(); ++f) {
+    const Piece& p = info[pieceIndex[root[f]]];
+    if (p.open ? 2 * p.turnedArea > p.area : p.volume < 0) {
+      apply(f);
+      flipped[f] ^= 1;
+    }
+  }
+  check.flippedTriangles = static_cast<std::size_t>(std::count(flipped.begin(), flipped.end(), 1));
+  return check;
+}
+
+}  // namespace nut::converter

@@ -1,0 +1,334 @@
+// OBJ + MTL reading for the converter: one pass over the text with std::from_chars (doubles,
+// locale-free), objects split at `o` / `g`, materials from `mtllib` files.
+#include <converter/mesh.hpp>
+
+#include <algorithm>
+#include <cerrno>
+#include <charconv>
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <limits>
+#include <map>
+#include <string_view>
+
+#include <glm/common.hpp>
+#include <glm/geometric.hpp>
+
+namespace nut::converter {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+bool isSpace(char c) { return c == ' ' || c == '\t' || c == '\r'; }
+
+// Splits text into lines and lines into whitespace-separated tokens.
+class Tokens {
+ public:
+  explicit Tokens(std::string_view line) : rest_(line) {}
+  bool next(std::string_view& token) {
+    std::size_t i = 0;
+    while (i < rest_.size() && isSpace(rest_[i])) ++i;
+    std::size_t j = i;
+    while (j < rest_.size() && !isSpace(rest_[j])) ++j;
+    token = rest_.substr(i, j - i);
+    rest_.remove_prefix(j);
+    return !token.empty();
+  }
+  // The rest of the line without surrounding blanks (names may contain spaces).
+  std::string_view rest() const {
+    std::string_view r = rest_;
+    while (!r.empty() && isSpace(r.front())) r.remove_prefix(1);
+    while (!r.empty() && isSpace(r.back())) r.remove_suffix(1);
+    return r;
+  }
+
+ private:
+  std::string_view rest_;
+};
+
+// A number as exporters write it: from_chars does not take a leading '+'.
+bool parseDouble(std::string_view token, double& value) {
+  if (!token.empty() && token.front() == '+') token.remove_prefix(1);
+  const auto [end, ec] = std::from_chars(token.data(), token.data() + token.size(), value);
+  return ec == std::errc() && end == token.data() + token.size();
+}
+
+bool parseInt(std::string_view token, long long& value) {
+  const auto [end, ec] = std::from_chars(token.data(), token.data() + token.size(), value);
+  return ec == std::errc() && end == token.data() + token.size();
+}
+
+std::uint8_t unitToByte(double v) {
+  if (!(v > 0)) return 0;  // also NaN
+  return static_cast<std::uint8_t>(std::lround(255.0 * std::min(v, 1.0)));
+}
+
+Result<std::string> readText(const std::string& path) {
+  std::error_code ec;
+  if (fs::is_directory(path, ec)) return Error{path + ": is a directory, not a file"};
+  std::ifstream file(path, std::ios::binary);
+  if (!file) return Error{path + ": cannot open (" + std::strerror(errno) + ")"};
+  std::string text;
+  try {
+    text.assign(std::istreambuf_iterator<char>(file), std::istreambuf_iterator<char>());
+  } catch (const std::ios_base::failure& e) {
+    return Error{path + ": read error (" + e.what() + ")"};
+  }
+  if (file.bad()) return Error{path + ": read error"};
+  return text;
+}
+
+// Calls f(lineNumber, line) for every line of text.
+template <typename F>
+void forEachLine(const std::string& text, F&& f) {
+  std::size_t start = 0;
+  long long number = 0;
+  while (start < text.size()) {
+    std::size_t end = text.find('\n', start);
+    if (end == std::string::npos) end = text.size();
+    f(++number, std::string_view(text).substr(start, end - start));
+    start = end + 1;
+  }
+}
+
+struct MaterialTable {
+  std::vector<Material> materials;
+  std::vector<std::string> names;
+  std::map<std::string, std::uint16_t, std::less<>> byName;
+  int defaultIndex = -1;
+
+  std::uint16_t add(const std::string& name, const Material& m) {
+    if (auto it = byName.find(name); it != byName.end()) {
+      materials[it->second] = m;  // a later definition wins, as in most viewers
+      return it->second;
+    }
+    materials.push_back(m);
+    names.push_back(name);
+    return byName[name] = static_cast<std::uint16_t>(materials.size() - 1);
+  }
+  std::uint16_t fallback() {
+    if (defaultIndex < 0) defaultIndex = add("default", kDefaultMaterial);
+    return static_cast<std::uint16_t>(defaultIndex);
+  }
+};
+
+void readMtl(const fs::path& path, MaterialTable& table, std::vector<std::string>& warnings) {
+  auto text = readText(path.string());
+  if (!text) {
+    warnings.push_back(text.error().message + "; its materials use the default grey");
+    return;
+  }
+  std::string current;
+  Material material = kDefaultMaterial;
+  bool open = false;
+  const auto flush = [&] {
+    if (open) table.add(current, material);
+  };
+  forEachLine(*text, [&](long long line, std::string_view l) {
+    Tokens t(l);
+    std::string_view key;
+    if (!t.next(key) || key.front() == '#') return;
+    const auto warn = [&](const char* what) {
+      warnings.push_back(path.string() + ":" + std::to_string(line) + ": " + what);
+    };
+    if (key == "newmtl") {
+      flush();
+      current = std::string(t.rest());
+      material = kDefaultMaterial;
+      open = true;
+    } else if (key == "Kd" && open) {
+      std::array<double, 3> kd{};
+      std::string_view token;
+      for (double& c : kd)
+        if (!t.next(token) || !parseDouble(token, c) || !std::isfinite(c)) return warn("Kd is not three numbers; ignored");
+      material.r = unitToByte(kd[0]);
+      material.g = unitToByte(kd[1]);
+      material.b = unitToByte(kd[2]);
+    } else if ((key == "d" || key == "Tr") && open) {
+      std::string_view token;
+      double v = 1;
+      if (!t.next(token) || !parseDouble(token, v) || !std::isfinite(v)) return warn("opacity is not a number; ignored");
+      material.opacity = unitToByte(key == "d" ? v : 1.0 - v);
+    }
+  });
+  flush();
+}
+
+// Collects faces of one object into a mesh with its own compact vertex list.
+struct ObjectBuilder {
+  Mesh mesh;
+  std::vector<std::uint32_t> local;  // file vertex -> mesh vertex, or max
+
+  std::uint32_t vertex(std::uint32_t fileIndex, const std::vector<glm::dvec3>& positions) {
+    if (local.size() < positions.size()) local.resize(positions.size(), std::numeric_limits<std::uint32_t>::max());
+    std::uint32_t& slot = local[fileIndex];
+    if (slot == std::numeric_limits<std::uint32_t>::max()) {
+      slot = static_cast<std::uint32_t>(mesh.positions.size());
+      mesh.positions.push_back(positions[fileIndex]);
+    }
+    return slot;
+  }
+};
+
+}  // namespace
+
+WorldBox Mesh::bounds() const {
+  WorldBox box{glm::dvec3(std::numeric_limits<double>::infinity()), glm::dvec3(-std::numeric_limits<double>::infinity())};
+  for (const auto& t : triangles)
+    for (std::uint32_t v : t) {
+      box.min = glm::min(box.min, positions[v]);
+      box.max = glm::max(box.max, positions[v]);
+    }
+  return box;
+}
+
+double Mesh::area() const {
+  double sum = 0;
+  for (const auto& t : triangles)
+    sum += 0.5 * glm::length(glm::cross(positions[t[1]] - positions[t[0]], positions[t[2]] - positions[t[0]]));
+  return sum;
+}
+
+Result<ObjContents> readObj(const std::string& path, const ObjReadOptions& options) {
+  auto text = readText(path);
+  if (!text) return text.error();
+  ObjContents out;
+  out.fileBytes = text->size();
+  const fs::path folder = fs::path(path).parent_path();
+
+  // Objects split at `o` when the file has any, else at `g`.
+  bool hasO = false;
+  forEachLine(*text, [&](long long, std::string_view l) {
+    if (!hasO && l.size() >= 2 && l[0] == 'o' && isSpace(l[1])) hasO = true;
+  });
+  const char splitKey = hasO ? 'o' : 'g';
+
+  MaterialTable table;
+  std::vector<glm::dvec3> positions;
+  std::vector<ObjectBuilder> objects(1);
+  objects[0].mesh.name = fs::path(path).stem().string();
+  std::map<std::string, std::size_t> objectByName;
+  std::size_t current = 0;
+  int material = -1;  // -1: none named yet
+  long long droppedFaces = 0;
+  std::vector<std::uint32_t> corners;
+  std::string error;
+
+  forEachLine(*text, [&](long long line, std::string_view l) {
+    if (!error.empty()) return;
+    Tokens t(l);
+    std::string_view key;
+    if (!t.next(key) || key.front() == '#') return;
+    const auto where = [&] { return path + ":" + std::to_string(line) + ": "; };
+    if (key == "v") {
+      glm::dvec3 p;
+      std::string_view token;
+      for (int i = 0; i < 3; ++i) {
+        if (!t.next(token)) {
+          error = where() + "vertex " + std::to_string(positions.size() + 1) + " has " + std::to_string(i) +
+                  " coordinates, expected 3";
+          return;
+        }
+        double v = 0;
+        if (!parseDouble(token, v)) {
+          // from_chars reads "nan" and "inf"; anything else unparsable is not a number at all.
+          error = where() + "vertex " + std::to_string(positions.size() + 1) + " has a coordinate that is not a number: '" +
+                  std::string(token) + "'";
+          return;
+        }
+        if (!std::isfinite(v)) {
+          error = where() + "vertex " + std::to_string(positions.size() + 1) + " has a non-finite coordinate '" +
+                  std::string(token) + "'";
+          return;
+        }
+        p[i] = v;
+      }
+      positions.push_back(options.zUp ? glm::dvec3(p.x, p.z, -p.y) : p);
+    } else if (key == "f") {
+      corners.clear();
+      std::string_view token;
+      while (t.next(token)) {
+        long long index = 0;
+        const std::string_view first = token.substr(0, token.find('/'));
+        if (!parseInt(first, index) || index == 0) {
+          error = where() + "face corner '" + std::string(token) + "' is not a vertex index";
+          return;
+        }
+        const long long resolved = index < 0 ? static_cast<long long>(positions.size()) + index : index - 1;
+        if (resolved < 0 || resolved >= static_cast<long long>(positions.size())) {
+          error = where() + "face refers to vertex " + std::to_string(index) + ", but only " +
+                  std::to_string(positions.size()) + " vertices precede it";
+          return;
+        }
+        const auto v = static_cast<std::uint32_t>(resolved);
+        if (std::find(corners.begin(), corners.end(), v) == corners.end()) corners.push_back(v);
+      }
+      if (corners.size() < 3) {
+        ++droppedFaces;
+        return;
+      }
+      if (material < 0) material = table.fallback();
+      ObjectBuilder& object = objects[current];
+      const std::uint32_t a = object.vertex(corners[0], positions);
+      for (std::size_t k = 1; k + 1 < corners.size(); ++k) {
+        object.mesh.triangles.push_back({a, object.vertex(corners[k], positions), object.vertex(corners[k + 1], positions)});
+        object.mesh.triangleMaterial.push_back(static_cast<std::uint16_t>(material));
+      }
+    } else if (key.size() == 1 && key.front() == splitKey) {
+      std::string name(t.rest());
+      if (name.empty()) name = objects[0].mesh.name + "_" + std::to_string(objects.size());
+      auto [it, inserted] = objectByName.try_emplace(name, objects.size());
+      if (inserted) {
+        objects.emplace_back();
+        objects.back().mesh.name = name;
+      }
+      current = it->second;
+    } else if (key == "usemtl") {
+      const std::string name(t.rest());
+      if (auto it = table.byName.find(name); it != table.byName.end()) {
+        material = it->second;
+      } else {
+        out.warnings.push_back(where() + "material '" + name + "' is not defined; using the default grey");
+        material = table.fallback();
+      }
+    } else if (key == "mtllib") {
+      // Names may not contain spaces here: several files on one line are allowed by the format.
+      std::string_view token;
+      while (t.next(token)) readMtl(folder / std::string(token), table, out.warnings);
+    }
+  });
+  if (!error.empty()) return Error{error};
+  if (droppedFaces > 0)
+    out.warnings.push_back(path + ": " + std::to_string(droppedFaces) + " faces with fewer than 3 distinct vertices dropped");
+
+  for (ObjectBuilder& object : objects) {
+    if (object.mesh.triangles.empty()) continue;
+    object.mesh.materials = table.materials;
+    object.mesh.materialNames = table.names;
+    out.objects.push_back(std::move(object.mesh));
+  }
+  if (out.objects.empty()) return Error{path + ": no faces (the file has " + std::to_string(positions.size()) + " vertices)"};
+  return out;
+}
+
+Mesh mergeObjects(const std::vector<Mesh>& objects, const std::string& name) {
+  Mesh out;
+  out.name = name;
+  for (const Mesh& m : objects) {
+    const auto base = static_cast<std::uint32_t>(out.positions.size());
+    out.positions.insert(out.positions.end(), m.positions.begin(), m.positions.end());
+    for (const auto& t : m.triangles) out.triangles.push_back({t[0] + base, t[1] + base, t[2] + base});
+    out.triangleMaterial.insert(out.triangleMaterial.end(), m.triangleMaterial.begin(), m.triangleMaterial.end());
+    if (out.materials.empty()) {
+      out.materials = m.materials;
+      out.materialNames = m.materialNames;
+    }
+  }
+  return out;
+}
+
+}  // namespace nut::converter

@@ -1,0 +1,175 @@
+// converter/mesh/src/solid_builder.hpp — what the steps of solid conversion share (solid.hpp
+// describes the steps): the per-face and per-slope records, the grid helpers, and Builder, which
+// holds the state; solid_grid.cpp (planes, slopes, boundaries, the driver), solid_occupancy.cpp
+// (occupancy, wedges, trimming) and solid_materials.cpp (materials, complementary mesh) implement it.
+#pragma once
+
+#include <array>
+#include <chrono>
+#include <cstdint>
+#include <mutex>
+#include <optional>
+#include <vector>
+
+#include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
+
+#include <converter/solid.hpp>
+#include <converter/winding.hpp>
+
+namespace nut::converter::solid {
+
+using glm::dvec2;
+using glm::dvec3;
+
+// The other two axes of an extrusion axis in the solids' cyclic order ((y,z), (z,x), (x,y)).
+constexpr int kU[3] = {1, 2, 0};
+constexpr int kV[3] = {2, 0, 1};
+
+// |w| at or above this is inside; between the ambiguity bounds the cell is sampled again.
+constexpr double kInside = 0.5;
+constexpr double kAmbiguousLow = 0.3, kAmbiguousHigh = 0.7;
+// Rounds of slope closure, and how many boundaries they may add per axis.
+// Clipped pieces of faces smaller than this (1 mm^2) are numerical slivers.
+constexpr double kMinPieceAreaM2 = 1e-6;
+// Faces whose material differs from their cell's on more than this share of the grid's surface
+// make the grid be built again with boundaries that separate them.
+constexpr double kConflictShareForRebuild = 0.001;
+// Builds of the grid at most (see buildSolidGrid).
+constexpr int kAttempts = 3;
+constexpr std::size_t kMaxSlopeBoundariesPerAxis = 128;
+// Slopes with less than this share of the mesh's area are left to the complementary mesh.
+constexpr double kMinSlopeShare = 0.002;
+// fitWedges gives a slope up once this many more of its cells failed than became wedges.
+constexpr int kWedgeGiveUp = 16;
+// trimCutCells samples a cut cell at its corners, this far inside (a share of the cell's size):
+// on the cell's own faces the winding number of a face lying there would be ambiguous.
+constexpr double kCornerInset = 0.02;
+// Weight of a face that faces into the solid it bounds, against faces that face out.
+constexpr double kInnerFaceWeight = 0.01;
+
+// Rounds of slope closure.
+constexpr int kSlopeRounds = 6;
+
+enum class FaceKind : std::uint8_t { Aligned, Slope, General };
+
+struct Face {
+  dvec3 areaVector{0.0};  // half the cross product: area times unit normal
+  double area = 0;
+  FaceKind kind = FaceKind::General;
+  int axis = 0;           // Aligned: the normal's axis; Slope: the extrusion axis
+  int group = -1;         // Aligned: cluster (later boundary) index; Slope: plane index
+};
+
+struct SlopePlane {
+  int e = 0;               // extrusion axis; the plane is n . (p_u, p_v) = offset
+  dvec2 n{0.0};            // unit normal in (u, v)
+  double offset = 0;
+  double s0 = 0, s1 = 0;   // extent along t = (-n.v, n.u)
+  double e0 = 0, e1 = 0;   // extent along e
+  double area = 0;
+  std::uint16_t material = 0;
+  std::vector<std::uint32_t> faces;
+  bool represented = true;
+  // Cells (u cell, e cell; e cell -1 for all) where fitWedges could not make a wedge.
+  std::vector<std::pair<int, int>> failed;
+
+  dvec2 point(double s) const { return offset * n + s * dvec2(-n.y, n.x); }
+  double vAt(double u) const { return (offset - n.x * u) / n.y; }
+  double uAt(double v) const { return (offset - n.y * v) / n.x; }
+  double uMin() const { return std::min(point(s0).x, point(s1).x); }
+  double uMax() const { return std::max(point(s0).x, point(s1).x); }
+  double vMin() const { return std::min(point(s0).y, point(s1).y); }
+  double vMax() const { return std::max(point(s0).y, point(s1).y); }
+};
+
+// Boundary helpers (solid_grid.cpp). Boundaries are sorted positions, metres from the origin.
+// Index of the last boundary <= x (clamped to a cell index 0..n-1).
+int cellOf(const std::vector<double>& bounds, double x);
+// Index of the boundary nearest to x.
+int nearestBoundary(const std::vector<double>& bounds, double x);
+bool hasBoundaryNear(const std::vector<double>& bounds, double x, double tolerance);
+// Sorted, millimetre-snapped positions at least 1 mm apart; 0 and size stay exact.
+std::vector<double> tidy(std::vector<double> positions, double size);
+// Inserts positions into one axis's boundaries unless a boundary lies within the tolerance.
+void insertBoundaries(std::vector<double>& bounds, std::vector<double> positions, double size, double tol);
+
+// A convex polygon in 2D and its clipping (solid_materials.cpp).
+struct Polygon2 {
+  std::array<dvec2, 12> p;
+  int n = 0;
+};
+// Keeps the part with coordinate `axis` below (keepBelow) or above `bound` (Sutherland-Hodgman).
+void clipAxis(Polygon2& poly, int axis, double bound, bool keepBelow);
+double polygonArea(const Polygon2& poly);
+
+// The winding-number tree, built on first use: a closed mesh without slopes never needs it.
+class LazyWinding {
+ public:
+  explicit LazyWinding(const Mesh& mesh) : mesh_(mesh) {}
+  double operator()(const dvec3& q) const {
+    std::call_once(once_, [this] {
+      const auto start = std::chrono::steady_clock::now();
+      tree_.emplace(mesh_.positions, mesh_.triangles);
+      seconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    });
+    return (*tree_)(q);
+  }
+  double buildSeconds() const { return seconds_; }
+
+ private:
+  const Mesh& mesh_;
+  mutable std::once_flag once_;
+  mutable std::optional<WindingNumber> tree_;
+  mutable double seconds_ = 0;
+};
+
+// Everything the steps share.
+struct Builder {
+  const Mesh& mesh;
+  const SolidOptions& options;
+  double tol;
+  dvec3 origin;
+  std::vector<dvec3> p;  // positions relative to origin
+  dvec3 size{0.0};
+  std::vector<Face> faces;
+  std::array<std::vector<double>, 3> clusterMeans;  // per axis
+  std::vector<SlopePlane> slopes;
+  std::array<std::vector<double>, 3> bounds;
+  std::array<int, 3> n{};
+  std::vector<std::int8_t> shape;        // per cell: -1 empty, else solid index (0 box, 1..12 wedge)
+  std::vector<std::uint16_t> hint;       // per cell: material of the nearest face along the sweep
+  SolidStats stats;
+
+  Builder(const Mesh& m, const SolidOptions& o) : mesh(m), options(o), tol(o.toleranceM) {}
+
+  std::size_t index(int x, int y, int z) const {
+    return static_cast<std::size_t>(x) + static_cast<std::size_t>(n[0]) * (static_cast<std::size_t>(y) + static_cast<std::size_t>(n[1]) * static_cast<std::size_t>(z));
+  }
+  std::size_t index(const std::array<int, 3>& c) const { return index(c[0], c[1], c[2]); }
+  dvec3 corner(std::uint32_t face, int k) const { return p[mesh.triangles[face][static_cast<std::size_t>(k)]]; }
+
+  void analyseFaces();
+  void findSlopes();
+  void buildBounds();
+  void closeSlopes();
+  void classify(const LazyWinding& winding);
+  bool fitWedges(const LazyWinding& winding);
+  void trimCutCells(const LazyWinding& winding);
+  bool shownByMesh(std::uint32_t face) const;
+  struct Share {
+    std::size_t cell;
+    std::uint16_t material;
+    std::uint8_t side;  // 2 * axis + (1 on the + side); 6 for a wedge's slope
+    double area;
+  };
+  std::vector<Share> wedgeShares;  // filled by fitWedges
+  std::vector<Share> computeShares(Mesh& complement, SolidStats& area);
+  bool onFailedCell(std::uint32_t face) const;
+  std::array<std::vector<double>, 3> materialConflicts(const std::vector<Share>& shares, double& conflictArea) const;
+  void assignMaterials(Block& block, const std::vector<Share>& shares);
+  std::array<std::vector<double>, 3> extraBounds;  // from material conflicts
+};
+
+
+}  // namespace nut::converter::solid

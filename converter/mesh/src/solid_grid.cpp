@@ -1,0 +1,409 @@
+// Solid conversion, first steps and driver: faces sorted into axis-aligned, sloped and other,
+// plane clustering, the grid's boundaries, slope closure, and buildSolidGrid (converter/solid.hpp).
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numbers>
+#include <numeric>
+#include <string>
+
+#include <glm/geometric.hpp>
+
+#include <nut/units.hpp>
+
+#include "solid_builder.hpp"
+
+namespace nut::converter {
+namespace solid {
+
+// Index of the last boundary <= x (clamped to a cell index 0..n-1).
+int cellOf(const std::vector<double>& bounds, double x) {
+  const auto it = std::upper_bound(bounds.begin(), bounds.end(), x);
+  const int i = static_cast<int>(it - bounds.begin()) - 1;
+  return std::clamp(i, 0, static_cast<int>(bounds.size()) - 2);
+}
+
+// Index of the boundary nearest to x.
+int nearestBoundary(const std::vector<double>& bounds, double x) {
+  const auto it = std::lower_bound(bounds.begin(), bounds.end(), x);
+  if (it == bounds.begin()) return 0;
+  if (it == bounds.end()) return static_cast<int>(bounds.size()) - 1;
+  const int i = static_cast<int>(it - bounds.begin());
+  return x - bounds[static_cast<std::size_t>(i - 1)] <= bounds[static_cast<std::size_t>(i)] - x ? i - 1 : i;
+}
+
+bool hasBoundaryNear(const std::vector<double>& bounds, double x, double tolerance) {
+  return std::abs(bounds[static_cast<std::size_t>(nearestBoundary(bounds, x))] - x) <= tolerance;
+}
+
+// Sorted, millimetre-snapped positions at least 1 mm apart; 0 and size stay exact.
+std::vector<double> tidy(std::vector<double> positions, double size) {
+  for (double& p : positions) p = std::clamp(snapToUnits(p), 0.0, size);
+  positions.push_back(0.0);
+  positions.push_back(size);
+  std::sort(positions.begin(), positions.end());
+  std::vector<double> out;
+  for (double p : positions)
+    if (out.empty() || p - out.back() >= 0.001 - 1e-9) out.push_back(p);
+  if (out.back() != size) out.back() = size;  // the last one within 1 mm of size becomes size
+  return out;
+}
+
+// Inserts positions into one axis's boundaries unless a boundary lies within the tolerance.
+void insertBoundaries(std::vector<double>& bounds, std::vector<double> positions, double size, double tol) {
+  std::sort(positions.begin(), positions.end());
+  std::vector<double> merged = bounds;
+  for (double p : positions)
+    if (!hasBoundaryNear(merged, p, tol)) {
+      merged.push_back(p);
+      std::sort(merged.begin(), merged.end());
+    }
+  bounds = tidy(std::move(merged), size);
+}
+
+namespace {
+
+// Clusters weighted intervals [lo, hi] whose gaps are at most `tolerance`; returns each
+// cluster's weighted mean of `centre` and sets cluster[i] for every item. A cluster that reaches
+// the end of the axis (0 or size) within the tolerance sits there: a wall tilted by half a degree
+// spans centimetres, and a boundary at its mean would leave a sliver of cells half in the wall.
+struct Interval {
+  double lo, hi, centre, weight;
+  std::uint32_t item;
+};
+std::vector<double> clusterIntervals(std::vector<Interval> items, double tolerance, double size, std::vector<int>& cluster) {
+  std::sort(items.begin(), items.end(), [](const Interval& a, const Interval& b) { return a.lo < b.lo; });
+  std::vector<double> means;
+  double first = 0, reach = -std::numeric_limits<double>::infinity(), sum = 0, weight = 0;
+  const auto close = [&] {
+    means.push_back(first <= tolerance ? 0.0 : reach >= size - tolerance ? size : sum / weight);
+    sum = weight = 0;
+  };
+  for (const Interval& it : items) {
+    if (it.lo > reach + tolerance && weight > 0) close();
+    if (weight == 0) {
+      first = it.lo;
+      reach = it.hi;
+    }
+    reach = std::max(reach, it.hi);
+    sum += it.weight * it.centre;
+    weight += it.weight;
+    cluster[it.item] = static_cast<int>(means.size());
+  }
+  if (weight > 0) close();
+  return means;
+}
+
+// Merges candidate positions closer than `tolerance` (weighted mean; 0 and size win) and tidies.
+std::vector<double> mergePositions(std::vector<std::pair<double, double>> candidates, double size, double tolerance) {
+  candidates.emplace_back(0.0, std::numeric_limits<double>::infinity());
+  candidates.emplace_back(size, std::numeric_limits<double>::infinity());
+  std::sort(candidates.begin(), candidates.end());
+  std::vector<double> out;
+  std::size_t i = 0;
+  while (i < candidates.size()) {
+    std::size_t j = i + 1;
+    while (j < candidates.size() && candidates[j].first - candidates[j - 1].first <= tolerance) ++j;
+    double sum = 0, weight = 0, fixed = std::numeric_limits<double>::quiet_NaN();
+    for (std::size_t k = i; k < j; ++k) {
+      if (std::isinf(candidates[k].second)) fixed = candidates[k].first;
+      sum += candidates[k].second * candidates[k].first;
+      weight += candidates[k].second;
+    }
+    out.push_back(!std::isnan(fixed) ? fixed : weight > 0 ? sum / weight : candidates[i].first);
+    i = j;
+  }
+  return tidy(std::move(out), size);
+}
+
+}  // namespace
+
+void Builder::analyseFaces() {
+  const double cosAligned = std::cos(options.angleToleranceDeg * std::numbers::pi / 180.0);
+  const double sinAlong = std::sin(options.angleToleranceDeg * std::numbers::pi / 180.0);
+  faces.resize(mesh.triangles.size());
+  std::array<std::vector<Interval>, 3> intervals;
+  for (std::uint32_t f = 0; f < faces.size(); ++f) {
+    Face& face = faces[f];
+    const dvec3 a = corner(f, 0), b = corner(f, 1), c = corner(f, 2);
+    face.areaVector = 0.5 * glm::cross(b - a, c - a);
+    face.area = glm::length(face.areaVector);
+    stats.areaM2 += face.area;
+    if (face.area <= 0) continue;
+    const dvec3 normal = face.areaVector / face.area;
+    const dvec3 absN = glm::abs(normal);
+    const int major = absN.x >= absN.y && absN.x >= absN.z ? 0 : absN.y >= absN.z ? 1 : 2;
+    if (absN[major] >= cosAligned) {
+      face.kind = FaceKind::Aligned;
+      face.axis = major;
+      intervals[static_cast<std::size_t>(major)].push_back({std::min({a[major], b[major], c[major]}),
+                                                            std::max({a[major], b[major], c[major]}),
+                                                            (a[major] + b[major] + c[major]) / 3.0, face.area, f});
+      continue;
+    }
+    for (int e = 0; e < 3; ++e)
+      if (absN[e] <= sinAlong && absN[kU[e]] > sinAlong && absN[kV[e]] > sinAlong) {
+        face.kind = FaceKind::Slope;
+        face.axis = e;
+      }
+  }
+  std::vector<int> cluster(faces.size(), -1);
+  for (int a = 0; a < 3; ++a) {
+    clusterMeans[static_cast<std::size_t>(a)] = clusterIntervals(intervals[static_cast<std::size_t>(a)], tol, size[a], cluster);
+    stats.planes[static_cast<std::size_t>(a)] = static_cast<int>(clusterMeans[static_cast<std::size_t>(a)].size());
+  }
+  for (std::uint32_t f = 0; f < faces.size(); ++f)
+    if (faces[f].kind == FaceKind::Aligned) faces[f].group = cluster[f];
+}
+
+// Groups slope faces into planes: same extrusion axis, normals within the angle tolerance,
+// offsets within the distance tolerance.
+void Builder::findSlopes() {
+  if (!options.wedges) {
+    for (Face& f : faces)
+      if (f.kind == FaceKind::Slope) f.kind = FaceKind::General;
+    return;
+  }
+  struct Item {
+    int e;
+    double angle, offset;
+    std::uint32_t face;
+  };
+  std::vector<Item> items;
+  for (std::uint32_t f = 0; f < faces.size(); ++f) {
+    if (faces[f].kind != FaceKind::Slope) continue;
+    const int e = faces[f].axis;
+    const dvec2 n2 = glm::normalize(dvec2(faces[f].areaVector[kU[e]], faces[f].areaVector[kV[e]]));
+    const dvec3 centre = (corner(f, 0) + corner(f, 1) + corner(f, 2)) / 3.0;
+    items.push_back({e, std::atan2(n2.y, n2.x), glm::dot(n2, dvec2(centre[kU[e]], centre[kV[e]])), f});
+  }
+  std::sort(items.begin(), items.end(), [](const Item& a, const Item& b) {
+    return a.e != b.e ? a.e < b.e : a.angle < b.angle;
+  });
+  const double angleTol = options.angleToleranceDeg * std::numbers::pi / 180.0;
+  std::size_t i = 0;
+  while (i < items.size()) {
+    std::size_t j = i + 1;
+    while (j < items.size() && items[j].e == items[i].e && items[j].angle - items[j - 1].angle <= angleTol) ++j;
+    std::sort(items.begin() + static_cast<std::ptrdiff_t>(i), items.begin() + static_cast<std::ptrdiff_t>(j),
+              [](const Item& a, const Item& b) { return a.offset < b.offset; });
+    std::size_t k = i;
+    while (k < j) {
+      std::size_t l = k + 1;
+      while (l < j && items[l].offset - items[l - 1].offset <= tol) ++l;
+      SlopePlane plane;
+      plane.e = items[k].e;
+      const int e = plane.e, u = kU[e], v = kV[e];
+      dvec2 normalSum(0.0);
+      std::vector<double> materialArea(mesh.materials.size(), 0.0);
+      for (std::size_t m = k; m < l; ++m) {
+        const Face& face = faces[items[m].face];
+        normalSum += dvec2(face.areaVector[u], face.areaVector[v]);
+        plane.area += face.area;
+        plane.faces.push_back(items[m].face);
+        materialArea[mesh.triangleMaterial[items[m].face]] += face.area;
+      }
+      plane.n = glm::normalize(normalSum);
+      double offsetSum = 0;
+      plane.s0 = plane.e0 = std::numeric_limits<double>::infinity();
+      plane.s1 = plane.e1 = -std::numeric_limits<double>::infinity();
+      const dvec2 t(-plane.n.y, plane.n.x);
+      for (std::uint32_t f : plane.faces) {
+        for (int c = 0; c < 3; ++c) {
+          const dvec3 q = corner(f, c);
+          const double s = glm::dot(t, dvec2(q[u], q[v]));
+          plane.s0 = std::min(plane.s0, s);
+          plane.s1 = std::max(plane.s1, s);
+          plane.e0 = std::min(plane.e0, q[e]);
+          plane.e1 = std::max(plane.e1, q[e]);
+          offsetSum += faces[f].area / 3.0 * glm::dot(plane.n, dvec2(q[u], q[v]));
+        }
+      }
+      plane.offset = offsetSum / plane.area;
+      plane.material = static_cast<std::uint16_t>(std::max_element(materialArea.begin(), materialArea.end()) - materialArea.begin());
+      const auto id = static_cast<int>(slopes.size());
+      for (std::uint32_t f : plane.faces) faces[f].group = id;
+      slopes.push_back(std::move(plane));
+      k = l;
+    }
+    i = j;
+  }
+  stats.slopes = static_cast<int>(slopes.size());
+}
+
+void Builder::buildBounds() {
+  for (int a = 0; a < 3; ++a) {
+    std::vector<std::pair<double, double>> candidates;
+    std::vector<double> weights(clusterMeans[static_cast<std::size_t>(a)].size(), 0.0);
+    for (const Face& f : faces)
+      if (f.kind == FaceKind::Aligned && f.axis == a) weights[static_cast<std::size_t>(f.group)] += f.area;
+    for (std::size_t c = 0; c < weights.size(); ++c) candidates.emplace_back(clusterMeans[static_cast<std::size_t>(a)][c], weights[c]);
+    bounds[static_cast<std::size_t>(a)] = mergePositions(std::move(candidates), size[a], tol);
+    insertBoundaries(bounds[static_cast<std::size_t>(a)], extraBounds[static_cast<std::size_t>(a)], size[a], tol);
+  }
+}
+
+// Adds, for each slope, its end lines and the boundaries where it crosses a boundary of the
+// other axis of its cross-section, until every accepted slope runs through cells corner to corner.
+// Slopes are taken largest first; one whose closure would add more boundaries than it crosses
+// (parallel slopes feed each other: a ramp's top and bottom would cascade across its whole run)
+// or push the grid past the budget is left to the complementary mesh.
+void Builder::closeSlopes() {
+  if (slopes.empty()) return;
+  const std::array<std::size_t, 3> initial{bounds[0].size(), bounds[1].size(), bounds[2].size()};
+  std::vector<std::size_t> order(slopes.size());
+  std::iota(order.begin(), order.end(), std::size_t{0});
+  std::sort(order.begin(), order.end(), [&](std::size_t x, std::size_t y) { return slopes[x].area > slopes[y].area; });
+  std::vector<std::size_t> accepted;
+  for (std::size_t candidate : order) {
+    SlopePlane& plane = slopes[candidate];
+    if (!plane.represented) continue;  // failed a previous attempt
+    if (plane.area < kMinSlopeShare * stats.areaM2) {
+      plane.represented = false;  // a facet too small to pay for its boundaries
+      continue;
+    }
+    std::array<std::vector<double>, 3> trial = bounds;
+    const int u = kU[plane.e], v = kV[plane.e];
+    insertBoundaries(trial[static_cast<std::size_t>(plane.e)], {plane.e0, plane.e1}, size[plane.e], tol);
+    insertBoundaries(trial[static_cast<std::size_t>(u)], {plane.uMin(), plane.uMax()}, size[u], tol);
+    insertBoundaries(trial[static_cast<std::size_t>(v)], {plane.vMin(), plane.vMax()}, size[v], tol);
+    // What a lone slope would add: one boundary per boundary it crosses, plus its ends.
+    std::size_t crossed = 4;
+    for (double x : trial[static_cast<std::size_t>(u)]) crossed += x > plane.uMin() + tol && x < plane.uMax() - tol;
+    for (double x : trial[static_cast<std::size_t>(v)]) crossed += x > plane.vMin() + tol && x < plane.vMax() - tol;
+    accepted.push_back(candidate);
+    for (int round = 0; round < kSlopeRounds; ++round) {
+      std::array<std::vector<double>, 3> added;
+      for (std::size_t id : accepted) {
+        const SlopePlane& sp = slopes[id];
+        const int su = kU[sp.e], sv = kV[sp.e];
+        for (double bu : trial[static_cast<std::size_t>(su)])
+          if (bu > sp.uMin() + tol && bu < sp.uMax() - tol) added[static_cast<std::size_t>(sv)].push_back(sp.vAt(bu));
+        for (double bv : trial[static_cast<std::size_t>(sv)])
+          if (bv > sp.vMin() + tol && bv < sp.vMax() - tol) added[static_cast<std::size_t>(su)].push_back(sp.uAt(bv));
+      }
+      bool any = false;
+      for (int a = 0; a < 3; ++a) {
+        const std::size_t before = trial[static_cast<std::size_t>(a)].size();
+        insertBoundaries(trial[static_cast<std::size_t>(a)], std::move(added[static_cast<std::size_t>(a)]), size[a], tol);
+        any = any || trial[static_cast<std::size_t>(a)].size() > before;
+      }
+      if (!any) break;
+    }
+    std::size_t growth = 0;
+    bool withinBudget = true;
+    for (int a = 0; a < 3; ++a) {
+      growth += trial[static_cast<std::size_t>(a)].size() - bounds[static_cast<std::size_t>(a)].size();
+      withinBudget = withinBudget && trial[static_cast<std::size_t>(a)].size() <= initial[static_cast<std::size_t>(a)] + kMaxSlopeBoundariesPerAxis;
+    }
+    if (growth > 2 * crossed + 8 || !withinBudget) {
+      accepted.pop_back();
+      plane.represented = false;
+      continue;
+    }
+    bounds = std::move(trial);
+  }
+  for (int a = 0; a < 3; ++a)
+    stats.slopeBoundaries += static_cast<long long>(bounds[static_cast<std::size_t>(a)].size() - initial[static_cast<std::size_t>(a)]);
+}
+
+}  // namespace solid
+
+using namespace solid;
+
+Result<SolidGrid> buildSolidGrid(const Mesh& mesh, const SolidOptions& options) {
+  if (mesh.triangles.empty()) return Error{mesh.name + ": no triangles to convert"};
+  Builder builder(mesh, options);
+  const WorldBox box = mesh.bounds();
+  builder.origin = box.min;
+  builder.size = box.max - box.min;
+  builder.p.reserve(mesh.positions.size());
+  for (const dvec3& q : mesh.positions) builder.p.push_back(q - builder.origin);
+  for (int a = 0; a < 3; ++a)
+    if (snapToUnits(builder.size[a]) < 0.001)
+      return Error{mesh.name + ": the mesh is flat along " + std::string(1, "xyz"[a]) +
+                   " (thinner than 1 mm), so it encloses no volume to convert"};
+  for (int a = 0; a < 3; ++a) builder.size[a] = std::max(snapToUnits(builder.size[a]), 0.001);
+
+  using Clock = std::chrono::steady_clock;
+  auto mark = Clock::now();
+  const auto lap = [&mark] {
+    const auto now = Clock::now();
+    const double s = std::chrono::duration<double>(now - mark).count();
+    mark = now;
+    return s;
+  };
+  builder.analyseFaces();
+  builder.findSlopes();
+  const LazyWinding winding(mesh);
+  // The grid is built again (at most kAttempts times in all) when a slope did not come out as
+  // wedges (its boundaries were added for nothing) or cells show faces of different materials
+  // (materialConflicts adds the boundaries that separate them).
+  SolidGrid out;
+  std::vector<Builder::Share> shares;
+  for (int attempt = 0; attempt < kAttempts; ++attempt) {
+    builder.buildBounds();
+    builder.closeSlopes();
+    std::size_t cells = 1;
+    for (int a = 0; a < 3; ++a) {
+      builder.n[static_cast<std::size_t>(a)] = static_cast<int>(builder.bounds[static_cast<std::size_t>(a)].size()) - 1;
+      builder.stats.cells[static_cast<std::size_t>(a)] = builder.n[static_cast<std::size_t>(a)];
+      cells *= static_cast<std::size_t>(builder.n[static_cast<std::size_t>(a)]);
+    }
+    if (cells > options.maxCells)
+      return Error{mesh.name + ": the grid would have " + std::to_string(builder.n[0]) + " x " + std::to_string(builder.n[1]) +
+                   " x " + std::to_string(builder.n[2]) + " cells, more than " + std::to_string(options.maxCells) +
+                   "; raise --tolerance to merge nearby planes"};
+    builder.shape.assign(cells, -1);
+    builder.hint.assign(cells, 0);
+    builder.stats.planesSeconds += lap();
+    builder.classify(winding);
+    builder.stats.occupancySeconds += lap();
+    builder.stats.slopesAsWedges = 0;
+    builder.stats.trimmedCells = 0;
+    builder.stats.slopeBoundaries = 0;
+    bool again = !builder.fitWedges(winding);
+    builder.trimCutCells(winding);
+    builder.stats.wedgesSeconds += lap();
+    out.complement = Mesh{};
+    SolidStats area;
+    shares = builder.computeShares(out.complement, area);
+    builder.stats.nutAreaM2 = area.nutAreaM2;
+    builder.stats.complementAreaM2 = area.complementAreaM2;
+    builder.stats.hiddenAreaM2 = area.hiddenAreaM2;
+    double conflictArea = 0;
+    auto proposals = builder.materialConflicts(shares, conflictArea);
+    builder.stats.conflictAreaM2 = conflictArea;
+    // Conflicts on a sliver of the surface are not worth another build of the grid.
+    if (attempt + 1 < kAttempts && conflictArea > kConflictShareForRebuild * area.nutAreaM2) {
+      for (int a = 0; a < 3; ++a) {
+        auto& list = proposals[static_cast<std::size_t>(a)];
+        std::sort(list.begin(), list.end());
+        std::vector<double> fresh;
+        for (double p : list)
+          if (!hasBoundaryNear(builder.bounds[static_cast<std::size_t>(a)], p, builder.tol) && (fresh.empty() || p - fresh.back() > builder.tol))
+            fresh.push_back(p);
+        auto& extra = builder.extraBounds[static_cast<std::size_t>(a)];
+        extra.insert(extra.end(), fresh.begin(), fresh.end());
+        builder.stats.materialBoundaries += static_cast<long long>(fresh.size());
+        again = again || !fresh.empty();
+      }
+    }
+    builder.stats.materialsSeconds += lap();
+    if (!again) break;
+  }
+  builder.stats.treeSeconds = winding.buildSeconds();  // part of the step that needed it first
+
+  out.originM = builder.origin;
+  out.block.boundsM = builder.bounds;
+  out.materials = mesh.materials;
+  out.complement.name = mesh.name + " (complement)";
+  out.complement.materials = mesh.materials;
+  out.complement.materialNames = mesh.materialNames;
+  builder.assignMaterials(out.block, shares);
+  builder.stats.materialsSeconds += lap();
+  out.stats = builder.stats;
+  return out;
+}
+
+}  // namespace nut::converter

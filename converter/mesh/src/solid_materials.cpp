@@ -1,0 +1,253 @@
+// Solid conversion, materials: faces clipped against the cells they bound, each cell's material,
+// the boundaries that separate faces of different materials, and the complementary mesh
+// (converter/solid.hpp, step 4).
+#include <algorithm>
+#include <cmath>
+
+#include <glm/geometric.hpp>
+
+#include "parallel.hpp"
+#include "solid_builder.hpp"
+
+namespace nut::converter::solid {
+
+void clipAxis(Polygon2& poly, int axis, double bound, bool keepBelow) {
+  Polygon2 out;
+  for (int i = 0; i < poly.n; ++i) {
+    const dvec2 a = poly.p[static_cast<std::size_t>(i)], b = poly.p[static_cast<std::size_t>((i + 1) % poly.n)];
+    const bool ina = keepBelow ? a[axis] <= bound : a[axis] >= bound;
+    const bool inb = keepBelow ? b[axis] <= bound : b[axis] >= bound;
+    if (ina) out.p[static_cast<std::size_t>(out.n++)] = a;
+    if (ina != inb) {
+      const double t = (bound - a[axis]) / (b[axis] - a[axis]);
+      dvec2 c = a + t * (b - a);
+      c[axis] = bound;
+      out.p[static_cast<std::size_t>(out.n++)] = c;
+    }
+  }
+  poly = out;
+}
+double polygonArea(const Polygon2& poly) {
+  double twice = 0;
+  for (int i = 0; i < poly.n; ++i) {
+    const dvec2 a = poly.p[static_cast<std::size_t>(i)], b = poly.p[static_cast<std::size_t>((i + 1) % poly.n)];
+    twice += a.x * b.y - a.y * b.x;
+  }
+  return 0.5 * std::abs(twice);
+}
+
+// Clips every axis-aligned face against the cell faces it covers (step 4 of solid.hpp). Where
+// exactly one side is solid, that cell gets a share of the face's area for the face's material
+// on that side; wedges add their slope (fitWedges). With `complement`, the pieces that are empty on
+// both sides go there and the surface statistics are counted.
+std::vector<Builder::Share> Builder::computeShares(Mesh& complementOut, SolidStats& area) {
+  // Faces are handled in chunks on all threads, each chunk into its own lists, which are then
+  // joined in chunk order so that the result does not depend on the thread count.
+  struct Chunk {
+    std::vector<Share> shares;
+    Mesh complement;
+    double nut = 0, complementArea = 0, hidden = 0;
+  };
+  constexpr std::size_t kChunk = 4096;
+  std::vector<Chunk> chunks((faces.size() + kChunk - 1) / kChunk);
+  parallelFor(faces.size(), kChunk, options.threads, [&](std::size_t begin, std::size_t end) {
+    Chunk& out = chunks[begin / kChunk];
+    const auto addComplementPolygon = [&](const dvec3* poly, int count, std::uint16_t material) {
+      const auto base = static_cast<std::uint32_t>(out.complement.positions.size());
+      for (int i = 0; i < count; ++i) out.complement.positions.push_back(poly[i] + origin);
+      for (std::uint32_t i = 1; i + 1 < static_cast<std::uint32_t>(count); ++i) {
+        out.complement.triangles.push_back({base, base + i, base + i + 1});
+        out.complement.triangleMaterial.push_back(material);
+      }
+    };
+    for (auto f = static_cast<std::uint32_t>(begin); f < end; ++f) {
+      const Face& face = faces[f];
+      const std::uint16_t material = mesh.triangleMaterial[f];
+      if (shownByMesh(f)) {
+        const dvec3 tri3[3] = {corner(f, 0), corner(f, 1), corner(f, 2)};
+        if (face.area > 0) addComplementPolygon(tri3, 3, material);
+        out.complementArea += face.area;
+        continue;
+      }
+      if (face.kind == FaceKind::Slope) {
+        out.nut += face.area;
+        continue;
+      }
+      const int a = face.axis, u = (a + 1) % 3, v = (a + 2) % 3;
+      const auto& A = bounds[static_cast<std::size_t>(a)];
+      const int k = nearestBoundary(A, clusterMeans[static_cast<std::size_t>(a)][static_cast<std::size_t>(face.group)]);
+      const dvec3 P0 = corner(f, 0), P1 = corner(f, 1), P2 = corner(f, 2);
+      Polygon2 tri;
+      tri.n = 3;
+      tri.p[0] = {P0[u], P0[v]};
+      tri.p[1] = {P1[u], P1[v]};
+      tri.p[2] = {P2[u], P2[v]};
+      const double projected = polygonArea(tri);
+      if (projected <= 0) continue;
+      const double toTrue = face.area / projected;
+      const auto& U = bounds[static_cast<std::size_t>(u)];
+      const auto& V = bounds[static_cast<std::size_t>(v)];
+      const int i0 = cellOf(U, std::min({P0[u], P1[u], P2[u]})), i1 = cellOf(U, std::max({P0[u], P1[u], P2[u]}));
+      const int j0 = cellOf(V, std::min({P0[v], P1[v], P2[v]})), j1 = cellOf(V, std::max({P0[v], P1[v], P2[v]}));
+      // The face's own plane lifts clipped pieces back to 3D for the complementary mesh.
+      const dvec3 normal = face.areaVector / face.area;
+      const double d = glm::dot(normal, P0);
+      // Pieces the mesh must show; a face mostly left to the mesh goes there whole instead.
+      std::vector<std::pair<std::array<dvec3, 12>, int>> uncovered;
+      double uncoveredArea = 0;
+      for (int i = i0; i <= i1; ++i) {
+        // A column strip first, then its rows: two clips per cell instead of four.
+        Polygon2 strip = tri;
+        if (i0 != i1) {
+          clipAxis(strip, 0, U[static_cast<std::size_t>(i)], false);
+          clipAxis(strip, 0, U[static_cast<std::size_t>(i + 1)], true);
+          if (strip.n < 3) continue;
+        }
+        for (int j = j0; j <= j1; ++j) {
+          Polygon2 piece = strip;
+          if (j0 != j1) {
+            clipAxis(piece, 1, V[static_cast<std::size_t>(j)], false);
+            clipAxis(piece, 1, V[static_cast<std::size_t>(j + 1)], true);
+            if (piece.n < 3) continue;
+          }
+          const double pieceArea = polygonArea(piece) * toTrue;
+          if (pieceArea <= kMinPieceAreaM2) continue;  // a clipping sliver, not a piece of surface
+          std::array<int, 3> lo{}, hi{};
+          lo[static_cast<std::size_t>(u)] = hi[static_cast<std::size_t>(u)] = i;
+          lo[static_cast<std::size_t>(v)] = hi[static_cast<std::size_t>(v)] = j;
+          lo[static_cast<std::size_t>(a)] = k - 1;
+          hi[static_cast<std::size_t>(a)] = k;
+          const bool solidLo = k > 0 && shape[index(lo)] >= 0;
+          const bool solidHi = k < n[static_cast<std::size_t>(a)] && shape[index(hi)] >= 0;
+          if (solidLo != solidHi) {
+            // The face is on the +a side of the cell below it, on the -a side of the cell above.
+            // One that faces into the solid is an inner face (the bottom of a dome standing on
+            // the roof): it only counts where nothing else covers the cell.
+            const bool facesOut = (normal[a] > 0) == solidLo;
+            out.shares.push_back({index(solidLo ? lo : hi), material, static_cast<std::uint8_t>(2 * a + (solidLo ? 1 : 0)),
+                                  facesOut ? pieceArea : kInnerFaceWeight * pieceArea});
+            out.nut += pieceArea;
+          } else if (!solidLo) {
+            // Empty on both sides: a thin sheet the mesh must show, or a strip thinner than the
+            // tolerance left over where boundaries merged, which is within the tolerance already.
+            double extent = 0;
+            for (int m = 0; m < piece.n; ++m)
+              extent = std::max(extent, glm::length(piece.p[static_cast<std::size_t>(m)] - piece.p[static_cast<std::size_t>((m + 1) % piece.n)]));
+            if (pieceArea < 0.5 * tol * extent) {
+              out.nut += pieceArea;
+              continue;
+            }
+            std::array<dvec3, 12> poly;
+            for (int m = 0; m < piece.n; ++m) {
+              dvec3& q = poly[static_cast<std::size_t>(m)];
+              q[u] = piece.p[static_cast<std::size_t>(m)].x;
+              q[v] = piece.p[static_cast<std::size_t>(m)].y;
+              q[a] = (d - normal[u] * q[u] - normal[v] * q[v]) / normal[a];
+            }
+            uncovered.emplace_back(poly, piece.n);
+            uncoveredArea += pieceArea;
+            out.complementArea += pieceArea;
+          } else {
+            out.hidden += pieceArea;  // solid on both sides: an inner face nobody sees
+          }
+        }
+      }
+      if (2 * uncoveredArea > face.area) {
+        const dvec3 tri3[3] = {P0, P1, P2};
+        addComplementPolygon(tri3, 3, material);
+      } else {
+        for (const auto& [poly, count] : uncovered) addComplementPolygon(poly.data(), count, material);
+      }
+    }
+  });
+  std::vector<Share> shares = wedgeShares;
+  Mesh* complement = &complementOut;
+  for (Chunk& c : chunks) {
+    shares.insert(shares.end(), c.shares.begin(), c.shares.end());
+    const auto base = static_cast<std::uint32_t>(complement->positions.size());
+    complement->positions.insert(complement->positions.end(), c.complement.positions.begin(), c.complement.positions.end());
+    for (const auto& t : c.complement.triangles) complement->triangles.push_back({t[0] + base, t[1] + base, t[2] + base});
+    complement->triangleMaterial.insert(complement->triangleMaterial.end(), c.complement.triangleMaterial.begin(),
+                                        c.complement.triangleMaterial.end());
+    area.nutAreaM2 += c.nut;
+    area.complementAreaM2 += c.complementArea;
+    area.hiddenAreaM2 += c.hidden;
+  }
+  std::sort(shares.begin(), shares.end(), [](const Share& x, const Share& y) {
+    return x.cell != y.cell ? x.cell < y.cell : x.side != y.side ? x.side < y.side : x.material < y.material;
+  });
+  return shares;
+}
+
+// A cell shows one material on all its faces. Where two of its faces carry different materials
+// with a real share each (a slab with a deck on top and a concrete ceiling below, a gable end
+// under a roof slope), a boundary is proposed that gives the smaller one a cell of its own: in
+// the middle for opposite faces, a little inside the smaller face otherwise.
+std::array<std::vector<double>, 3> Builder::materialConflicts(const std::vector<Share>& shares, double& conflictArea) const {
+  conflictArea = 0;
+  std::array<std::vector<double>, 3> proposals;
+  const double inset = std::max(1.5 * tol, 0.002);
+  for (std::size_t i = 0; i < shares.size();) {
+    std::size_t j = i;
+    // Dominant material and area per side (6 = a wedge's slope).
+    std::array<double, 7> sideArea{};
+    std::array<std::uint16_t, 7> sideMaterial{};
+    double total = 0;
+    while (j < shares.size() && shares[j].cell == shares[i].cell) {
+      std::size_t k = j;
+      double sum = 0;
+      while (k < shares.size() && shares[k].cell == shares[j].cell && shares[k].side == shares[j].side &&
+             shares[k].material == shares[j].material)
+        sum += shares[k++].area;
+      if (sum > sideArea[shares[j].side]) {
+        sideArea[shares[j].side] = sum;
+        sideMaterial[shares[j].side] = shares[j].material;
+      }
+      total += sum;
+      j = k;
+    }
+    const std::size_t cell = shares[i].cell;
+    i = j;
+    const int best = static_cast<int>(std::max_element(sideArea.begin(), sideArea.end()) - sideArea.begin());
+    std::array<int, 3> c{static_cast<int>(cell % static_cast<std::size_t>(n[0])),
+                         static_cast<int>(cell / static_cast<std::size_t>(n[0]) % static_cast<std::size_t>(n[1])),
+                         static_cast<int>(cell / (static_cast<std::size_t>(n[0]) * static_cast<std::size_t>(n[1])))};
+    for (int side = 0; side < 6; ++side) {
+      if (side == best || sideArea[static_cast<std::size_t>(side)] < 0.15 * total ||
+          sideMaterial[static_cast<std::size_t>(side)] == sideMaterial[static_cast<std::size_t>(best)])
+        continue;
+      const int a = side / 2;
+      const auto& B = bounds[static_cast<std::size_t>(a)];
+      const double lo = B[static_cast<std::size_t>(c[static_cast<std::size_t>(a)])], hi = B[static_cast<std::size_t>(c[static_cast<std::size_t>(a)] + 1)];
+      if (hi - lo < 2 * inset) continue;
+      conflictArea += sideArea[static_cast<std::size_t>(side)];
+      if (best / 2 == a && best < 6) proposals[static_cast<std::size_t>(a)].push_back(0.5 * (lo + hi));
+      else proposals[static_cast<std::size_t>(a)].push_back(side % 2 ? hi - inset : lo + inset);
+    }
+  }
+  return proposals;
+}
+
+void Builder::assignMaterials(Block& block, const std::vector<Share>& shares) {
+  block.cells.assign(shape.size(), Cell::empty());
+  std::vector<std::uint16_t> chosen(hint);
+  std::vector<double> materialArea(mesh.materials.size(), 0.0);
+  for (std::size_t i = 0; i < shares.size();) {
+    std::size_t j = i;
+    std::fill(materialArea.begin(), materialArea.end(), 0.0);
+    while (j < shares.size() && shares[j].cell == shares[i].cell) {
+      materialArea[shares[j].material] += shares[j].area;
+      ++j;
+    }
+    chosen[shares[i].cell] = static_cast<std::uint16_t>(std::max_element(materialArea.begin(), materialArea.end()) - materialArea.begin());
+    i = j;
+  }
+  for (std::size_t id = 0; id < shape.size(); ++id) {
+    if (shape[id] < 0) continue;
+    block.cells[id] = Cell::solidCell(Solid{static_cast<std::uint8_t>(shape[id])}, chosen[id]);
+    ++stats.solidCells;
+    stats.wedgeCells += shape[id] > 0;
+  }
+}
+
+}  // namespace nut::converter::solid

@@ -1,0 +1,389 @@
+// Solid conversion, occupancy: which cells are inside (closed lines by counting, the rest by
+// generalized winding numbers), wedges where slopes run corner to corner, and the trimming of
+// box cells that the complementary mesh cuts (converter/solid.hpp, steps 2 and 3).
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <numeric>
+
+#include <glm/geometric.hpp>
+
+#include "parallel.hpp"
+#include "solid_builder.hpp"
+
+namespace nut::converter::solid {
+
+// Occupancy of every cell centre (step 3 of solid.hpp). Each column of cells along the sweep
+// axis s is a line; its crossings with the faces are gathered and, moving along +s, a face whose
+// normal points against the line is an entry (+1) and one along it an exit (-1). Crossings at one
+// position (the line through an edge or a vertex shared by several faces) count once per
+// direction, so an edge is never counted twice. Where the running count never drops below zero
+// and ends at zero, the line met a closed surface and the count is the winding number itself. Any
+// other column (it passed through a hole, or met faces turned the wrong way) is decided by the
+// generalized winding number, evaluated once per run of cells between two crossings.
+void Builder::classify(const LazyWinding& winding) {
+  const int s = static_cast<int>(std::max_element(n.begin(), n.end()) - n.begin());
+  const int b = (s + 1) % 3, c = (s + 2) % 3;
+  stats.sweepAxis = s;
+  const auto centres = [&](int a) {
+    std::vector<double> out;
+    const auto& bd = bounds[static_cast<std::size_t>(a)];
+    for (std::size_t i = 0; i + 1 < bd.size(); ++i) out.push_back(0.5 * (bd[i] + bd[i + 1]));
+    return out;
+  };
+  const std::vector<double> cs = centres(s), cb = centres(b), cc = centres(c);
+  const std::size_t columns = cb.size() * cc.size();
+
+  // Crossings of every face with every column line it may touch (inclusive: a crossing found
+  // twice is merged below, one missed would be wrong).
+  struct Crossing {
+    std::uint32_t column;
+    std::uint32_t face;
+    double at;
+    int sign;  // +1 entry, -1 exit, 0 seen edge-on (only splits runs)
+  };
+  std::vector<Crossing> crossings;
+  const double eps = 1e-9 * std::max({size.x, size.y, size.z, 1.0});
+  for (std::uint32_t f = 0; f < faces.size(); ++f) {
+    if (faces[f].area <= 0) continue;
+    const dvec3 A = corner(f, 0), B = corner(f, 1), C = corner(f, 2);
+    const double bmin = std::min({A[b], B[b], C[b]}) - eps, bmax = std::max({A[b], B[b], C[b]}) + eps;
+    const double cmin = std::min({A[c], B[c], C[c]}) - eps, cmax = std::max({A[c], B[c], C[c]}) + eps;
+    const auto j0 = static_cast<std::size_t>(std::lower_bound(cb.begin(), cb.end(), bmin) - cb.begin());
+    const auto j1 = static_cast<std::size_t>(std::upper_bound(cb.begin(), cb.end(), bmax) - cb.begin());
+    const auto k0 = static_cast<std::size_t>(std::lower_bound(cc.begin(), cc.end(), cmin) - cc.begin());
+    const auto k1 = static_cast<std::size_t>(std::upper_bound(cc.begin(), cc.end(), cmax) - cc.begin());
+    const dvec2 a2(A[b], A[c]), b2(B[b], B[c]), c2(C[b], C[c]);
+    const double det = (b2.x - a2.x) * (c2.y - a2.y) - (b2.y - a2.y) * (c2.x - a2.x);
+    const double scale = glm::length(b2 - a2) + glm::length(c2 - a2) + glm::length(c2 - b2);
+    const bool edgeOn = std::abs(det) <= 1e-12 * scale * scale;
+    const int sign = faces[f].areaVector[s] < 0 ? +1 : -1;
+    const double sMin = std::min({A[s], B[s], C[s]}), sMax = std::max({A[s], B[s], C[s]});
+    const double margin = 1e-9;
+    for (std::size_t k = k0; k < k1; ++k)
+      for (std::size_t j = j0; j < j1; ++j) {
+        const dvec2 q(cb[j], cc[k]);
+        const auto column = static_cast<std::uint32_t>(j + cb.size() * k);
+        if (edgeOn) {
+          // The line may run inside the face: split the runs at both its ends.
+          crossings.push_back({column, f, sMin, 0});
+          crossings.push_back({column, f, sMax, 0});
+          continue;
+        }
+        const double l1 = ((q.x - a2.x) * (c2.y - a2.y) - (q.y - a2.y) * (c2.x - a2.x)) / det;
+        const double l2 = ((b2.x - a2.x) * (q.y - a2.y) - (b2.y - a2.y) * (q.x - a2.x)) / det;
+        if (l1 < -margin || l2 < -margin || l1 + l2 > 1 + margin) continue;
+        crossings.push_back({column, f, A[s] + l1 * (B[s] - A[s]) + l2 * (C[s] - A[s]), sign});
+      }
+  }
+  // Counting sort by column; each column sorts its own by position.
+  std::vector<std::size_t> start(columns + 1, 0);
+  for (const Crossing& x : crossings) ++start[x.column + 1];
+  std::partial_sum(start.begin(), start.end(), start.begin());
+  std::vector<Crossing> sorted(crossings.size());
+  {
+    std::vector<std::size_t> fillAt(start.begin(), start.end() - 1);
+    for (const Crossing& x : crossings) sorted[fillAt[x.column]++] = x;
+  }
+  crossings.clear();
+  crossings.shrink_to_fit();
+
+  std::atomic<long long> evaluations{0}, ambiguous{0}, windingColumns{0};
+  const auto inside = [&](const dvec3& q, const dvec3& half, bool& wasAmbiguous) {
+    const double w = std::abs(winding(q + origin));
+    if (w < kAmbiguousLow || w > kAmbiguousHigh) return w >= kInside;
+    // On or next to a surface: four samples a quarter cell away across the column.
+    wasAmbiguous = true;
+    double sum = w;
+    for (int d = 0; d < 4; ++d) {
+      dvec3 o = q;
+      o[b] += (d & 1 ? 0.5 : -0.5) * half[b];
+      o[c] += (d & 2 ? 0.5 : -0.5) * half[c];
+      sum += std::abs(winding(o + origin));
+    }
+    return sum / 5.0 >= kInside;
+  };
+  parallelFor(
+      columns, 64, options.threads,
+      [&](std::size_t begin, std::size_t end) {
+        long long localEvaluations = 0, localAmbiguous = 0, localWinding = 0;
+        std::vector<std::pair<double, int>> events;  // merged crossings: position, winding change
+        for (std::size_t column = begin; column < end; ++column) {
+          const std::size_t j = column % cb.size(), k = column / cb.size();
+          const auto first = sorted.begin() + static_cast<std::ptrdiff_t>(start[column]);
+          const auto last = sorted.begin() + static_cast<std::ptrdiff_t>(start[column + 1]);
+          std::sort(first, last, [](const Crossing& x, const Crossing& y) { return x.at < y.at; });
+
+          // Merge crossings at one position: at most one entry and one exit each.
+          events.clear();
+          bool closed = true;
+          int running = 0;
+          for (auto it = first; it != last;) {
+            auto group = it;
+            bool entry = false, exit = false;
+            while (group != last && group->at - it->at <= eps) {
+              entry = entry || group->sign > 0;
+              exit = exit || group->sign < 0;
+              ++group;
+            }
+            const int change = (entry ? 1 : 0) - (exit ? 1 : 0);
+            events.emplace_back(it->at, change);
+            running += change;
+            closed = closed && running >= 0;
+            it = group;
+          }
+          closed = closed && running == 0;
+
+          std::array<int, 3> cell{};
+          cell[static_cast<std::size_t>(b)] = static_cast<int>(j);
+          cell[static_cast<std::size_t>(c)] = static_cast<int>(k);
+          const auto& bb = bounds[static_cast<std::size_t>(b)];
+          const auto& bc = bounds[static_cast<std::size_t>(c)];
+          const auto& bs = bounds[static_cast<std::size_t>(s)];
+          auto next = first;
+          std::size_t event = 0;
+          int count = 0;
+          bool known = false, solid = false;
+          if (!closed) ++localWinding;
+          for (std::size_t i = 0; i < cs.size(); ++i) {
+            bool crossed = false;
+            while (event < events.size() && events[event].first < cs[i] - eps) {
+              count += events[event++].second;
+              crossed = true;
+            }
+            while (next != last && next->at < cs[i]) ++next;
+            cell[static_cast<std::size_t>(s)] = static_cast<int>(i);
+            const std::size_t id = index(cell);
+            // The nearest face along the column (behind, else ahead) lends its material.
+            if (next != first) hint[id] = mesh.triangleMaterial[(next - 1)->face];
+            else if (next != last) hint[id] = mesh.triangleMaterial[next->face];
+            // A face through the centre itself leaves the count undecided for this cell.
+            const bool onSurface = event < events.size() && events[event].first <= cs[i] + eps;
+            if (closed && !onSurface) {
+              shape[id] = count > 0 ? 0 : -1;
+              continue;
+            }
+            if (!known || crossed || onSurface) {
+              dvec3 q, half;
+              q[s] = cs[i];
+              q[b] = cb[j];
+              q[c] = cc[k];
+              half[s] = 0.5 * (bs[i + 1] - bs[i]);
+              half[b] = 0.5 * (bb[j + 1] - bb[j]);
+              half[c] = 0.5 * (bc[k + 1] - bc[k]);
+              bool wasAmbiguous = false;
+              solid = inside(q, half, wasAmbiguous);
+              ++localEvaluations;
+              localAmbiguous += wasAmbiguous;
+              // A value decided for a centre on a surface holds for this cell only.
+              known = !wasAmbiguous && !onSurface;
+            }
+            shape[id] = solid ? 0 : -1;
+          }
+        }
+        evaluations += localEvaluations;
+        ambiguous += localAmbiguous;
+        windingColumns += localWinding;
+      },
+      options.progress);
+  stats.windingEvaluations = evaluations;
+  stats.ambiguousCells = ambiguous;
+  stats.windingColumns = windingColumns;
+  stats.columns = static_cast<long long>(columns);
+}
+
+// Cells a slope runs through corner to corner become wedges (or stay boxes / empty when both
+// halves are solid / empty); a slope shown entirely by wedges leaves the complementary mesh.
+// Returns whether every slope closeSlopes accepted came out as wedges.
+bool Builder::fitWedges(const LazyWinding& winding) {
+  bool all = true;
+  wedgeShares.clear();
+  for (SlopePlane& plane : slopes) {
+    if (!plane.represented) continue;  // rejected by closeSlopes
+    const int e = plane.e, u = kU[e], v = kV[e];
+    const auto& U = bounds[static_cast<std::size_t>(u)];
+    const auto& V = bounds[static_cast<std::size_t>(v)];
+    const auto& E = bounds[static_cast<std::size_t>(e)];
+    const int i0 = cellOf(U, plane.uMin() + tol), i1 = cellOf(U, plane.uMax() - tol);
+    const int k0 = cellOf(E, plane.e0 + tol), k1 = cellOf(E, plane.e1 - tol);
+    int good = 0, bad = 0;
+    plane.failed.clear();
+    for (int i = i0; i <= i1 && bad <= good + kWedgeGiveUp; ++i) {
+      const double ua = U[static_cast<std::size_t>(i)], ub = U[static_cast<std::size_t>(i + 1)];
+      const double va = plane.vAt(ua), vb = plane.vAt(ub);
+      const int j = nearestBoundary(V, std::min(va, vb));
+      if (ua < plane.uMin() - tol || ub > plane.uMax() + tol || j + 1 >= static_cast<int>(V.size()) ||
+          std::abs(V[static_cast<std::size_t>(j)] - std::min(va, vb)) > tol ||
+          std::abs(V[static_cast<std::size_t>(j + 1)] - std::max(va, vb)) > tol) {
+        // Cut off the diagonal: centre classification stands, for every cell along e.
+        plane.failed.push_back({i, -1});
+        bad += k1 - k0 + 1;
+        continue;
+      }
+      // The two corners off the diagonal: rising diagonal leaves (1,0) and (0,1), falling (0,0) and (1,1).
+      const bool rising = vb > va;
+      const std::array<std::array<int, 2>, 2> offCorners =
+          rising ? std::array<std::array<int, 2>, 2>{{{1, 0}, {0, 1}}} : std::array<std::array<int, 2>, 2>{{{0, 0}, {1, 1}}};
+      const double vlo = V[static_cast<std::size_t>(j)], vhi = V[static_cast<std::size_t>(j + 1)];
+      for (int k = k0; k <= k1 && bad <= good + kWedgeGiveUp; ++k) {
+        const double ea = E[static_cast<std::size_t>(k)], eb = E[static_cast<std::size_t>(k + 1)];
+        if (ea < plane.e0 - tol || eb > plane.e1 + tol) {
+          plane.failed.push_back({i, k});
+          ++bad;
+          continue;
+        }
+        std::array<bool, 2> in{};
+        for (int h = 0; h < 2; ++h) {
+          // Centroid of the half holding the off-diagonal corner h: (corner + two diagonal ends) / 3.
+          const std::array<int, 2> oc = offCorners[static_cast<std::size_t>(h)];
+          const double cu = oc[0] ? ub : ua, cv = oc[1] ? vhi : vlo;
+          dvec3 q;
+          q[e] = 0.5 * (ea + eb);
+          q[u] = (cu + ua + ub) / 3.0;
+          q[v] = (cv + vlo + vhi) / 3.0;
+          in[static_cast<std::size_t>(h)] = std::abs(winding(q + origin)) >= kInside;
+        }
+        std::array<int, 3> cell{};
+        cell[static_cast<std::size_t>(e)] = k;
+        cell[static_cast<std::size_t>(u)] = i;
+        cell[static_cast<std::size_t>(v)] = j;
+        std::int8_t& sh = shape[index(cell)];
+        if (in[0] == in[1]) {
+          // Solid on both sides: the slope is hidden here (a chimney through the roof). Empty on
+          // both: the slope is missing from the solid, so the mesh must show it.
+          sh = in[0] ? 0 : -1;
+          if (in[0]) {
+            ++good;
+          } else {
+            plane.failed.push_back({i, k});
+            ++bad;
+          }
+          continue;
+        }
+        const std::array<int, 2> oc = offCorners[in[0] ? 0 : 1];
+        sh = static_cast<std::int8_t>(makeSolid(SolidGroup::Wedge, e * 4 + oc[0] + 2 * oc[1]).index);
+        hint[index(cell)] = plane.material;
+        wedgeShares.push_back({index(cell), plane.material, 6, (eb - ea) * std::hypot(ub - ua, vhi - vlo)});
+        ++good;
+      }
+    }
+    // Mostly wedges: the slope stays, its faces over failed cells go to the complementary mesh.
+    // Mostly failed: its boundaries were added for nothing.
+    plane.represented = good > 0 && bad <= good + kWedgeGiveUp && (options.partialWedges ? bad <= good : bad == 0);
+    stats.slopesAsWedges += plane.represented;
+    all = all && plane.represented;
+  }
+  return all;
+}
+
+// Whether the complementary mesh shows face f whole: it is neither axis-aligned nor part of a
+// slope shown by wedges at its place.
+bool Builder::shownByMesh(std::uint32_t f) const {
+  const Face& face = faces[f];
+  if (face.kind == FaceKind::General) return true;
+  if (face.kind == FaceKind::Aligned) return false;
+  return !slopes[static_cast<std::size_t>(face.group)].represented || onFailedCell(f);
+}
+
+namespace {
+
+// Separating-axis test of a triangle against an axis-aligned box (Akenine-Moeller 2001): the 3
+// box axes, the triangle normal and the 9 edge cross products.
+bool triangleOverlapsBox(dvec3 a, dvec3 b, dvec3 c, const dvec3& centre, const dvec3& half) {
+  a -= centre;
+  b -= centre;
+  c -= centre;
+  const dvec3 edges[3] = {b - a, c - b, a - c};
+  const auto separated = [&](const dvec3& axis) {
+    const double pa = glm::dot(a, axis), pb = glm::dot(b, axis), pc = glm::dot(c, axis);
+    const double r = half.x * std::abs(axis.x) + half.y * std::abs(axis.y) + half.z * std::abs(axis.z);
+    return std::min({pa, pb, pc}) > r || std::max({pa, pb, pc}) < -r;
+  };
+  for (int i = 0; i < 3; ++i) {
+    dvec3 axis(0.0);
+    axis[i] = 1;
+    if (separated(axis)) return false;
+  }
+  if (separated(glm::cross(edges[0], edges[1]))) return false;
+  for (const dvec3& e : edges)
+    for (int i = 0; i < 3; ++i) {
+      dvec3 unit(0.0);
+      unit[i] = 1;
+      const dvec3 axis = glm::cross(e, unit);
+      if (glm::dot(axis, axis) > 0 && separated(axis)) return false;
+    }
+  return true;
+}
+
+}  // namespace
+
+// Box cells that a face of the complementary mesh cuts stay solid only when they are inside all
+// over (all eight corners): a cell half above a roof the grid could not follow would poke through
+// it, while a missing part under the roof is hidden by the roof mesh, and the cell's own faces
+// that go missing with it are empty on both sides and so move to the mesh as well.
+void Builder::trimCutCells(const LazyWinding& winding) {
+  std::vector<std::uint8_t> cut(shape.size(), 0);
+  bool any = false;
+  for (std::uint32_t f = 0; f < faces.size(); ++f) {
+    if (faces[f].area <= 0 || !shownByMesh(f)) continue;
+    const dvec3 a = corner(f, 0), b = corner(f, 1), c = corner(f, 2);
+    std::array<int, 3> lo{}, hi{};
+    for (int ax = 0; ax < 3; ++ax) {
+      const auto& B = bounds[static_cast<std::size_t>(ax)];
+      lo[static_cast<std::size_t>(ax)] = cellOf(B, std::min({a[ax], b[ax], c[ax]}));
+      hi[static_cast<std::size_t>(ax)] = cellOf(B, std::max({a[ax], b[ax], c[ax]}));
+    }
+    for (int z = lo[2]; z <= hi[2]; ++z)
+      for (int y = lo[1]; y <= hi[1]; ++y)
+        for (int x = lo[0]; x <= hi[0]; ++x) {
+          const std::size_t id = index(x, y, z);
+          if (shape[id] != 0 || cut[id]) continue;
+          const dvec3 cellLo(bounds[0][static_cast<std::size_t>(x)], bounds[1][static_cast<std::size_t>(y)], bounds[2][static_cast<std::size_t>(z)]);
+          const dvec3 cellHi(bounds[0][static_cast<std::size_t>(x + 1)], bounds[1][static_cast<std::size_t>(y + 1)], bounds[2][static_cast<std::size_t>(z + 1)]);
+          // Shrunk a little: a face lying on the cell's side does not cut it.
+          const dvec3 half = 0.5 * (cellHi - cellLo) - dvec3(1e-6);
+          if (glm::all(glm::greaterThan(half, dvec3(0.0))) && triangleOverlapsBox(a, b, c, 0.5 * (cellLo + cellHi), half)) {
+            cut[id] = 1;
+            any = true;
+          }
+        }
+  }
+  if (!any) return;
+  for (int z = 0; z < n[2]; ++z)
+    for (int y = 0; y < n[1]; ++y)
+      for (int x = 0; x < n[0]; ++x) {
+        const std::size_t id = index(x, y, z);
+        if (!cut[id]) continue;
+        for (int sample = 0; sample < 8; ++sample) {
+          dvec3 q;
+          const std::array<int, 3> c{x, y, z};
+          for (int ax = 0; ax < 3; ++ax) {
+            const auto& B = bounds[static_cast<std::size_t>(ax)];
+            const double l = B[static_cast<std::size_t>(c[static_cast<std::size_t>(ax)])], h = B[static_cast<std::size_t>(c[static_cast<std::size_t>(ax)] + 1)];
+            q[ax] = l + ((sample >> ax) & 1 ? 1.0 - kCornerInset : kCornerInset) * (h - l);
+          }
+          if (std::abs(winding(q + origin)) < kInside) {
+            shape[id] = -1;
+            ++stats.trimmedCells;
+            break;
+          }
+        }
+      }
+}
+
+// Whether a face of a slope shown by wedges crosses a cell where fitWedges made no wedge.
+bool Builder::onFailedCell(std::uint32_t f) const {
+  const SlopePlane& plane = slopes[static_cast<std::size_t>(faces[f].group)];
+  if (plane.failed.empty()) return false;
+  const int e = plane.e, u = kU[e];
+  const dvec3 a = corner(f, 0), b = corner(f, 1), c = corner(f, 2);
+  const auto& U = bounds[static_cast<std::size_t>(u)];
+  const auto& E = bounds[static_cast<std::size_t>(e)];
+  const int i0 = cellOf(U, std::min({a[u], b[u], c[u]}) + tol), i1 = cellOf(U, std::max({a[u], b[u], c[u]}) - tol);
+  const int k0 = cellOf(E, std::min({a[e], b[e], c[e]}) + tol), k1 = cellOf(E, std::max({a[e], b[e], c[e]}) - tol);
+  for (const auto& [i, k] : plane.failed)
+    if (i >= i0 && i <= i1 && (k < 0 || (k >= k0 && k <= k1))) return true;
+  return false;
+}
+
+}  // namespace nut::converter::solid

@@ -1,0 +1,143 @@
+// `nut convert` as a user runs it: outputs (HNI with the world origin, complementary mesh, report
+// JSON), one HNI per object and city.json with -o FOLDER, the progress bar's absence with --quiet,
+// manual blocks, and the exit codes: 2 for unreadable input, 1 for invalid input or usage.
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include <converter/city.hpp>
+#include <nut/hni.hpp>
+#include <nut/png_io.hpp>
+
+#include "converter_support.hpp"
+
+namespace nut::converter {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct CliRun {
+  int exitCode = -1;
+  std::string stderrText;
+};
+
+// Runs `nut <args>` with stderr captured (one file per test: ctest runs the tests in parallel).
+CliRun nut(const std::string& args) {
+  const fs::path err = fs::path(testing::outputDir("converter_cli")) /
+                       (std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()) + ".stderr.txt");
+  const std::string command = std::string(NUT_CLI_PATH) + " " + args + " 2> " + err.string();
+  const int status = std::system(command.c_str());
+  CliRun r;
+  r.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  std::ifstream in(err);
+  std::stringstream text;
+  text << in.rdbuf();
+  r.stderrText = text.str();
+  return r;
+}
+
+std::string out(const std::string& name) { return (fs::path(testing::outputDir("converter_cli")) / name).string(); }
+std::string sample(const std::string& name) { return std::string(NUT_SOURCE_DIR) + "/samples/obj/" + name; }
+
+TEST(ConvertCli, WritesTheHniComplementAndReport) {
+  fs::remove(out("carpark.png"));
+  const CliRun r = nut("convert " + sample("carpark.obj") + " -o " + out("carpark.png") + " --complement " + out("carpark-rest.obj") +
+                    " --report " + out("carpark.json"));
+  ASSERT_EQ(r.exitCode, 0) << r.stderrText;
+  EXPECT_NE(r.stderrText.find("surface"), std::string::npos) << r.stderrText;
+
+  auto png = readPng(out("carpark.png"));
+  ASSERT_TRUE(png.ok()) << png.error().message;
+  EXPECT_TRUE(validate(png->image).ok());
+  EXPECT_EQ(png->text.generator, "nut convert");
+  EXPECT_NEAR(png->text.originM.y, 0.0, 1e-9);
+  EXPECT_TRUE(fs::exists(out("carpark-rest.obj")));
+  EXPECT_TRUE(fs::exists(out("carpark-rest.mtl")));
+
+  std::ifstream in(out("carpark.json"));
+  const nlohmann::json report = nlohmann::json::parse(in);
+  for (const char* key : {"phases_seconds", "input", "grid", "surface", "blocks", "hni"}) EXPECT_TRUE(report.contains(key)) << key;
+  EXPECT_EQ(report["hni"]["bytes_png"].get<long long>(), static_cast<long long>(fs::file_size(out("carpark.png"))));
+  EXPECT_GT(report["surface"]["nut_fraction"].get<double>(), 0.9);
+  EXPECT_GT(report["phases_seconds"]["solid"].get<double>(), 0.0);
+}
+
+TEST(ConvertCli, QuietPrintsNothing) {
+  const CliRun r = nut("convert " + sample("house.obj") + " -o " + out("house.png") + " --quiet");
+  ASSERT_EQ(r.exitCode, 0) << r.stderrText;
+  EXPECT_EQ(r.stderrText, "");
+}
+
+TEST(ConvertCli, AFolderGetsOneHniPerObjectAndACityManifest) {
+  fs::remove_all(out("street"));
+  const CliRun r = nut("convert " + sample("street.obj") + " -o " + out("street") + " --quiet");
+  ASSERT_EQ(r.exitCode, 0) << r.stderrText;
+  auto city = readCityJson(out("street/city.json"));
+  ASSERT_TRUE(city.ok()) << city.error().message;
+  ASSERT_EQ(city->buildings.size(), 4u);
+  for (const CityBuilding& b : city->buildings) {
+    auto png = readPng(out("street/" + b.hni));
+    ASSERT_TRUE(png.ok()) << b.hni;
+    EXPECT_EQ(png->text.originM, b.positionM) << b.name;  // the manifest places each HNI at its own origin
+  }
+}
+
+TEST(ConvertCli, ManualBlocksAreReported) {
+  // One window bay of the residential block's back facade, as a person would select it.
+  const CliRun r = nut("convert " + sample("residential.obj") + " -o " + out("residential.png") + " --quiet --no-auto-blocks" +
+                    " --block 1.03,4.13,-0.04:2.47,5.59,0.22 --report " + out("residential.json"));
+  ASSERT_EQ(r.exitCode, 0) << r.stderrText;
+  std::ifstream in(out("residential.json"));
+  const nlohmann::json report = nlohmann::json::parse(in);
+  ASSERT_FALSE(report["blocks"]["found"].empty());
+  EXPECT_TRUE(report["blocks"]["found"][0]["manual"].get<bool>());
+  EXPECT_GE(report["blocks"]["found"][0]["instances"].get<int>(), 2);
+}
+
+TEST(ConvertCli, ExitCodes) {
+  CliRun r = nut("convert /nonexistent/building.obj -o " + out("x.png"));
+  EXPECT_EQ(r.exitCode, 2);
+  EXPECT_NE(r.stderrText.find("error: /nonexistent/building.obj: cannot open"), std::string::npos) << r.stderrText;
+
+  {
+    std::ofstream(out("nan.obj")) << "v 0 0 0\nv nan 1 0\nv 0 1 1\nf 1 2 3\n";
+  }
+  r = nut("convert " + out("nan.obj") + " -o " + out("nan.png"));
+  EXPECT_EQ(r.exitCode, 1);
+  EXPECT_NE(r.stderrText.find("nan.obj:2: vertex 2 has a non-finite coordinate"), std::string::npos) << r.stderrText;
+  EXPECT_FALSE(fs::exists(out("nan.png")));
+
+  {
+    std::ofstream(out("empty.obj")) << "# nothing\n";
+  }
+  r = nut("convert " + out("empty.obj") + " -o " + out("empty.png"));
+  EXPECT_EQ(r.exitCode, 1);
+  EXPECT_NE(r.stderrText.find("no faces"), std::string::npos) << r.stderrText;
+
+  r = nut("convert " + sample("house.obj") + " -o " + out("h.png") + " --block 1,2,3");
+  EXPECT_EQ(r.exitCode, 1);
+  EXPECT_NE(r.stderrText.find("--block '1,2,3'"), std::string::npos) << r.stderrText;
+
+  r = nut("convert " + sample("house.obj") + " -o " + out("h.png") + " --tolerance -1");
+  EXPECT_EQ(r.exitCode, 1);
+}
+
+TEST(ConvertCli, HelpHasAnExample) {
+  const std::string file = out("help.stdout.txt");
+  const int status = std::system((std::string(NUT_CLI_PATH) + " convert --help > " + file).c_str());
+  ASSERT_EQ(WEXITSTATUS(status), 0);
+  std::ifstream in(file);
+  std::stringstream text;
+  text << in.rdbuf();
+  EXPECT_NE(text.str().find("nut convert samples/obj/"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace nut::converter

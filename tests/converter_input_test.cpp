@@ -1,0 +1,283 @@
+// Mesh converter, first steps: the OBJ + MTL reader and its errors (file:line), objects and
+// materials, z-up; the mesh checks and orientation repair; the generalized winding number against
+// its exact sum; the solid grid on analytic meshes (a box, a box tilted by half a degree, an open
+// box, a gable roof of wedges, a thin sheet left to the complementary mesh); the city manifest.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <numbers>
+#include <random>
+#include <string>
+
+#include <glm/geometric.hpp>
+
+#include <converter/city.hpp>
+#include <converter/convert.hpp>
+#include <converter/mesh.hpp>
+#include <converter/mesh_check.hpp>
+#include <converter/solid.hpp>
+#include <converter/winding.hpp>
+
+#include "converter_support.hpp"
+
+namespace nut::converter {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string writeFile(const std::string& name, const std::string& text) {
+  const fs::path path = fs::path(testing::outputDir("converter_input")) / name;
+  std::ofstream(path) << text;
+  return path.string();
+}
+
+// An axis-aligned box [lo, hi] as OBJ text (outward faces, one material per face pair), after
+// `rotateDeg` degrees about the vertical axis through the box centre.
+std::string boxObj(glm::dvec3 lo, glm::dvec3 hi, double rotateDeg = 0, const std::string& mtllib = "") {
+  const glm::dvec3 c = 0.5 * (lo + hi);
+  const double t = rotateDeg * std::numbers::pi / 180.0;
+  std::string obj = mtllib.empty() ? "" : "mtllib " + mtllib + "\n";
+  char line[160];
+  for (int i = 0; i < 8; ++i) {
+    glm::dvec3 p((i & 1) ? hi.x : lo.x, (i & 2) ? hi.y : lo.y, (i & 4) ? hi.z : lo.z);
+    const glm::dvec3 d = p - c;
+    p = c + glm::dvec3(d.x * std::cos(t) + d.z * std::sin(t), d.y, -d.x * std::sin(t) + d.z * std::cos(t));
+    std::snprintf(line, sizeof line, "v %.9f %.9f %.9f\n", p.x, p.y, p.z);
+    obj += line;
+  }
+  // Quads counter-clockwise seen from outside (1-based corners: bit 0 x, bit 1 y, bit 2 z).
+  obj += mtllib.empty() ? "" : "usemtl wall\n";
+  obj += "f 1 5 7 3\nf 2 4 8 6\nf 1 2 6 5\nf 3 7 8 4\n";
+  obj += mtllib.empty() ? "" : "usemtl roof\n";
+  obj += "f 1 3 4 2\nf 5 6 8 7\n";
+  return obj;
+}
+
+// A conversion of OBJ text.
+Result<Conversion> convertText(const std::string& name, const std::string& text, const ConvertOptions& options = {}) {
+  auto obj = readObj(writeFile(name, text));
+  if (!obj) return obj.error();
+  return convertMesh(mergeObjects(obj->objects, name), options);
+}
+
+TEST(ObjInput, ReadsObjectsMaterialsAndNegativeIndices) {
+  writeFile("two.mtl", "newmtl red\nKd 1 0 0\nnewmtl half\nKd 0.5 0.5 0.5\nd 0.5\n");
+  const std::string path = writeFile("two.obj",
+                                     "mtllib two.mtl\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\n"
+                                     "o first\nusemtl red\nf 1 2 3 4\n"
+                                     "o second\nusemtl half\nf -4/1/1 -2/2/2 -1\nusemtl missing\nf 1 2 3\n");
+  auto obj = readObj(path);
+  ASSERT_TRUE(obj.ok()) << obj.error().message;
+  ASSERT_EQ(obj->objects.size(), 2u);
+  EXPECT_EQ(obj->objects[0].name, "first");
+  EXPECT_EQ(obj->objects[0].triangles.size(), 2u);  // the quad as a fan
+  EXPECT_EQ(obj->objects[1].name, "second");
+  EXPECT_EQ(obj->objects[1].triangles.size(), 2u);
+  const Mesh& second = obj->objects[1];
+  EXPECT_EQ(second.materials[second.triangleMaterial[0]], (Material{128, 128, 128, 128, 0}));
+  EXPECT_EQ(second.materials[second.triangleMaterial[1]], kDefaultMaterial);
+  ASSERT_EQ(obj->warnings.size(), 1u);
+  EXPECT_NE(obj->warnings[0].find("two.obj:12: material 'missing'"), std::string::npos) << obj->warnings[0];
+  EXPECT_EQ(obj->objects[0].materials[obj->objects[0].triangleMaterial[0]], (Material{255, 0, 0, 255, 0}));
+}
+
+TEST(ObjInput, GroupsSplitObjectsWhenThereIsNoO) {
+  auto obj = readObj(writeFile("groups.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\ng a\nf 1 2 3\ng b\nf 1 3 2\ng a\nf 2 1 3\n"));
+  ASSERT_TRUE(obj.ok());
+  ASSERT_EQ(obj->objects.size(), 2u);
+  EXPECT_EQ(obj->objects[0].triangles.size(), 2u);  // both "g a" runs
+  EXPECT_EQ(obj->objects[1].name, "b");
+}
+
+TEST(ObjInput, ZUpTurnsToYUp) {
+  auto obj = readObj(writeFile("zup.obj", "v 1 2 3\nv 0 0 0\nv 1 0 0\nf 1 2 3\n"), {true});
+  ASSERT_TRUE(obj.ok());
+  EXPECT_EQ(obj->objects[0].positions[0], glm::dvec3(1, 3, -2));
+}
+
+TEST(ObjInput, KeepsLargeCoordinatesInDoublePrecision) {
+  auto obj = readObj(writeFile("city.obj", "v 2678219.001 395.002 -1243078.003\nv 2678220 395 -1243078\nv 2678219 396 -1243078\nf 1 2 3\n"));
+  ASSERT_TRUE(obj.ok());
+  EXPECT_EQ(obj->objects[0].positions[0], glm::dvec3(2678219.001, 395.002, -1243078.003));
+}
+
+struct BadObj {
+  const char* name;
+  const char* text;
+  const char* expected;  // part of the message
+};
+
+class ObjErrors : public ::testing::TestWithParam<BadObj> {};
+
+TEST_P(ObjErrors, NameTheFileAndLine) {
+  const BadObj& c = GetParam();
+  auto obj = readObj(writeFile(std::string(c.name) + ".obj", c.text));
+  ASSERT_FALSE(obj.ok());
+  EXPECT_NE(obj.error().message.find(c.expected), std::string::npos) << obj.error().message;
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Bad, ObjErrors,
+    ::testing::Values(BadObj{"nan", "v 0 0 0\nv nan 0 0\nv 0 1 0\nf 1 2 3\n", "nan.obj:2: vertex 2 has a non-finite coordinate 'nan'"},
+                      BadObj{"inf", "v 0 0 0\nv 1 -inf 0\nv 0 1 0\nf 1 2 3\n", "inf.obj:2: vertex 2 has a non-finite coordinate"},
+                      BadObj{"word", "v 0 0 zero\n", "word.obj:1: vertex 1 has a coordinate that is not a number: 'zero'"},
+                      BadObj{"short", "v 0 0\n", "short.obj:1: vertex 1 has 2 coordinates, expected 3"},
+                      BadObj{"range", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 4\n", "range.obj:4: face refers to vertex 4, but only 3"},
+                      BadObj{"zero", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 0 1 2\n", "zero.obj:4: face corner '0' is not a vertex index"},
+                      BadObj{"noface", "v 0 0 0\nv 1 0 0\n", "no faces (the file has 2 vertices)"},
+                      BadObj{"empty", "", "no faces"}),
+    [](const ::testing::TestParamInfo<BadObj>& p) { return std::string(p.param.name); });
+
+TEST(ObjInput, UnreadableFilesAreErrors) {
+  EXPECT_FALSE(readObj("/nonexistent/building.obj").ok());
+  EXPECT_NE(readObj(testing::outputDir("converter_input")).error().message.find("is a directory"), std::string::npos);
+}
+
+TEST(ConvertErrors, OnlyDegenerateFacesIsRefused) {
+  auto c = convertText("flat", "v 0 0 0\nv 1 0 0\nv 2 0 0\nf 1 2 3\n");
+  ASSERT_FALSE(c.ok());
+  EXPECT_NE(c.error().message.find("degenerate"), std::string::npos) << c.error().message;
+}
+
+TEST(ConvertErrors, AFlatMeshEnclosesNothing) {
+  auto c = convertText("sheet", "v 0 0 0\nv 1 0 0\nv 1 0 1\nv 0 0 1\nf 1 2 3 4\n");
+  ASSERT_FALSE(c.ok());
+  EXPECT_NE(c.error().message.find("flat along y"), std::string::npos) << c.error().message;
+}
+
+TEST(MeshCheck, FindsOpenEdgesNonManifoldEdgesAndFlippedFaces) {
+  auto obj = readObj(writeFile("checked.obj", boxObj({0, 0, 0}, {1, 1, 1}) +
+                                                  // A fin on the edge x=0..1, y=0, z=0: that edge gets 3 faces.
+                                                  "v 0 0 -1\nf 1 2 9\n"));
+  ASSERT_TRUE(obj.ok());
+  Mesh mesh = obj->objects[0];
+  MeshCheck check = checkAndRepair(mesh);
+  EXPECT_EQ(check.nonManifoldEdges, 1u);
+  EXPECT_EQ(check.boundaryEdges, 2u);  // the fin's two free edges
+  EXPECT_FALSE(check.closed());
+
+  // A closed box with one face turned: repaired, and the box turned inside out is turned back.
+  std::string flipped = boxObj({0, 0, 0}, {1, 1, 1});
+  flipped.replace(flipped.find("f 1 5 7 3"), 9, "f 3 7 5 1");
+  auto obj2 = readObj(writeFile("flipped.obj", flipped));
+  ASSERT_TRUE(obj2.ok());
+  Mesh box = obj2->objects[0];
+  check = checkAndRepair(box);
+  EXPECT_GT(check.inconsistentEdges, 0u);
+  EXPECT_EQ(check.flippedTriangles, 2u);
+  EXPECT_TRUE(check.closed());
+  const WindingNumber w(box.positions, box.triangles);
+  EXPECT_NEAR(w.exact(glm::dvec3(0.5)), 1.0, 1e-9);
+}
+
+TEST(MeshCheck, RemovesDegenerateFaces) {
+  auto obj = readObj(writeFile("degenerate.obj", boxObj({0, 0, 0}, {1, 1, 1}) + "v 0.5 0 0\nf 1 9 2\n"));
+  ASSERT_TRUE(obj.ok());
+  Mesh mesh = obj->objects[0];
+  const MeshCheck check = checkAndRepair(mesh);
+  EXPECT_EQ(check.degenerate, 1u);
+  EXPECT_EQ(mesh.triangles.size(), 12u);
+}
+
+TEST(WindingNumber, FastMatchesExactAndClassifiesABox) {
+  // A box, whole and with one side missing: the fast sum must follow the exact one.
+  auto obj = readObj(writeFile("winding.obj", boxObj({0, 0, 0}, {4, 3, 2})));
+  ASSERT_TRUE(obj.ok());
+  const Mesh& m = obj->objects[0];
+  std::vector<std::array<std::uint32_t, 3>> open(m.triangles.begin() + 2, m.triangles.end());  // one side missing
+  for (const auto& tris : {m.triangles, open}) {
+    const WindingNumber w(m.positions, tris);
+    std::mt19937 rng(7);
+    std::uniform_real_distribution<double> d(-2.0, 6.0);
+    for (int i = 0; i < 500; ++i) {
+      const glm::dvec3 q(d(rng), d(rng), d(rng));
+      EXPECT_NEAR(w(q), w.exact(q), 0.03) << q.x << " " << q.y << " " << q.z;  // far-field expansions
+    }
+  }
+  const WindingNumber closed(m.positions, m.triangles);
+  EXPECT_NEAR(closed.exact(glm::dvec3(2, 1.5, 1)), 1.0, 1e-9);
+  EXPECT_NEAR(closed.exact(glm::dvec3(5, 1.5, 1)), 0.0, 1e-9);
+  EXPECT_NEAR(closed(glm::dvec3(2, 1.5, 1)), 1.0, 0.03);
+  EXPECT_NEAR(closed(glm::dvec3(5, 1.5, 1)), 0.0, 0.03);
+}
+
+TEST(SolidGrid, ABoxIsOneSolidCell) {
+  auto c = convertText("box", boxObj({10, 20, 30}, {14, 23, 32}));
+  ASSERT_TRUE(c.ok()) << c.error().message;
+  EXPECT_EQ(c->originM, glm::dvec3(10, 20, 30));
+  EXPECT_EQ(c->report.solid.cells, (std::array<int, 3>{1, 1, 1}));
+  EXPECT_EQ(c->report.solid.solidCells, 1);
+  EXPECT_NEAR(c->report.solid.nutAreaM2, c->report.solid.areaM2, 1e-9);
+  EXPECT_TRUE(c->complement.triangles.empty());
+}
+
+TEST(SolidGrid, FacesTiltedByHalfADegreeStillCluster) {
+  // A 10 m box turned by 0.5 degrees: each wall spans 8.7 cm across its plane.
+  auto c = convertText("tilted", boxObj({0, 0, 0}, {10, 3, 10}, 0.5));
+  ASSERT_TRUE(c.ok()) << c.error().message;
+  EXPECT_EQ(c->report.solid.planes, (std::array<int, 3>{2, 2, 2}));
+  EXPECT_EQ(c->report.solid.cells[1], 1);
+  EXPECT_GT(c->report.solid.nutAreaM2, 0.99 * c->report.solid.areaM2);
+}
+
+TEST(SolidGrid, AnOpenBoxIsStillSolid) {
+  // The bottom is missing (a shell on the ground): the winding number still finds the inside.
+  std::string obj = boxObj({0, 0, 0}, {4, 3, 2});
+  obj.erase(obj.find("f 1 3 4 2\n"), 10);
+  auto c = convertText("openbox", obj);
+  ASSERT_TRUE(c.ok()) << c.error().message;
+  EXPECT_FALSE(c->report.check.closed());
+  EXPECT_EQ(c->report.solid.solidCells, 1);
+}
+
+TEST(SolidGrid, AGableRoofBecomesWedges) {
+  // A 6 x 2 x 4 box with a gable roof 2 m high, ridge along x.
+  const std::string obj =
+      "v 0 0 0\nv 6 0 0\nv 6 0 4\nv 0 0 4\nv 0 2 0\nv 6 2 0\nv 6 2 4\nv 0 2 4\nv 0 4 2\nv 6 4 2\n"
+      "f 1 2 3 4\n"            // bottom (seen from below: counter-clockwise facing -y)
+      "f 1 5 6 2\nf 4 3 7 8\n"  // front z=0 and back z=4 walls
+      "f 1 4 8 9 5\nf 2 6 10 7 3\n"  // gable ends with the triangle on top
+      "f 5 9 10 6\nf 8 7 10 9\n";    // roof slopes
+  auto c = convertText("gable", obj);
+  ASSERT_TRUE(c.ok()) << c.error().message;
+  EXPECT_EQ(c->report.solid.slopesAsWedges, 2);
+  EXPECT_EQ(c->report.solid.wedgeCells, 2);
+  EXPECT_TRUE(c->complement.triangles.empty());
+  EXPECT_NEAR(c->report.solid.nutAreaM2, c->report.solid.areaM2, 1e-6);
+}
+
+TEST(SolidGrid, AThinSheetGoesToTheComplementaryMesh) {
+  // A closed box and a free-standing sign: a single quad with nothing behind it.
+  const std::string obj = boxObj({0, 0, 0}, {2, 2, 2}) + "v 3 0 1\nv 4 0 1\nv 4 1 1\nv 3 1 1\nf 9 10 11 12\n";
+  auto c = convertText("sheet", obj);
+  ASSERT_TRUE(c.ok()) << c.error().message;
+  EXPECT_NEAR(c->report.solid.complementAreaM2, 1.0, 1e-6);
+  EXPECT_EQ(c->complement.triangles.size(), 2u);
+}
+
+TEST(City, ManifestRoundTripsAndRejectsPathsOutside) {
+  CityManifest city{"block", {{"a", "a.png", "a.complement.obj", {2678219.125, 395.5, -1243078.25}, 0},
+                              {"b", "sub/b.png", "", {1, 2, 3}, 90}}};
+  const std::string path = writeFile("city.json", cityJson(city));
+  auto back = readCityJson(path);
+  ASSERT_TRUE(back.ok()) << back.error().message;
+  ASSERT_EQ(back->buildings.size(), 2u);
+  EXPECT_EQ(back->buildings[0].positionM, city.buildings[0].positionM);
+  EXPECT_EQ(back->buildings[1].hni, "sub/b.png");
+  EXPECT_EQ(back->buildings[1].yawDeg, 90);
+  EXPECT_TRUE(back->buildings[1].complement.empty());
+
+  const std::string outside = writeFile("outside.json", R"({"format": "nut-city", "version": 1, "buildings": [
+      {"name": "x", "hni": "../x.png", "position_m": [0, 0, 0]}]})");
+  auto bad = readCityJson(outside);
+  ASSERT_FALSE(bad.ok());
+  EXPECT_NE(bad.error().message.find("building 0 (x)"), std::string::npos) << bad.error().message;
+  EXPECT_FALSE(readCityJson(writeFile("notjson.json", "{")).ok());
+  EXPECT_EQ(safeFileStem("UUID_2b58/..:x"), "UUID_2b58_.._x");
+  EXPECT_EQ(safeFileStem(".hidden"), "_.hidden");
+}
+
+}  // namespace
+}  // namespace nut::converter

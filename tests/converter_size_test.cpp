@@ -1,0 +1,72 @@
+// Sizes of the converter's output against the source mesh: the HNI PNG (blocks chosen
+// automatically, and without extraction where that fits an HNI) against the OBJ + MTL files, a
+// binary glTF compressed with meshoptimizer and gzip (mesh_size.hpp), and the decoded mesh in
+// memory. Prints one Markdown table row per sample (docs/CONVERTER.md, "Sizes") and checks the
+// GLB it measures decodes back to the mesh.
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+
+#include <converter/city.hpp>
+#include <converter/convert.hpp>
+#include <converter/mesh.hpp>
+#include <converter/mesh_size.hpp>
+
+#include "converter_support.hpp"
+
+namespace nut::converter {
+namespace {
+
+namespace fs = std::filesystem;
+
+TEST(MeshSize, TheGlbDecodesBackToTheTriangles) {
+  auto obj = readObj(std::string(NUT_SOURCE_DIR) + "/samples/obj/carpark.obj");
+  ASSERT_TRUE(obj.ok());
+  const Mesh mesh = mergeObjects(obj->objects, "carpark");
+  const std::vector<std::uint8_t> glb = meshoptGlb(mesh);
+  ASSERT_GT(glb.size(), 20u);
+  std::uint32_t magic = 0, jsonLength = 0;
+  std::memcpy(&magic, glb.data(), 4);
+  std::memcpy(&jsonLength, glb.data() + 12, 4);
+  EXPECT_EQ(magic, 0x46546C67u);
+  EXPECT_EQ(jsonLength % 4, 0u);
+  const MeshSizes sizes = measureMesh(mesh);
+  EXPECT_LT(sizes.glbGzipBytes, sizes.glbBytes);
+  EXPECT_LT(sizes.glbBytes, sizes.decodedBytes);
+}
+
+class SampleSize : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(SampleSize, Table) {
+  const std::string path = std::string(NUT_SOURCE_DIR) + "/samples/obj/" + GetParam() + ".obj";
+  auto obj = readObj(path);
+  ASSERT_TRUE(obj.ok());
+  const std::uintmax_t objBytes =
+      fs::file_size(path) + fs::file_size(fs::path(path).replace_extension(".mtl"));
+  const Mesh mesh = mergeObjects(obj->objects, GetParam());
+  const MeshSizes sizes = measureMesh(mesh);
+  // As `nut convert` does it: the street is four objects, four HNIs.
+  const bool perObject = obj->objects.size() > 1;
+  long long png = 0, complementTriangles = 0;
+  std::string mode;
+  for (const Mesh& part : perObject ? obj->objects : std::vector<Mesh>{mesh}) {
+    auto c = convertMesh(part);
+    ASSERT_TRUE(c.ok()) << c.error().message;
+    ASSERT_TRUE(writeConversion(*c, testing::outputDir("converter_size") + "/" + safeFileStem(part.name) + ".png", "").ok());
+    png += static_cast<long long>(c->report.pngBytes);
+    complementTriangles += static_cast<long long>(c->complement.triangles.size());
+    if (mode.find(c->report.blockMode) == std::string::npos) mode += (mode.empty() ? "" : ", ") + c->report.blockMode;
+  }
+  std::printf("| %s | %zu | %ju | %ju | %ju | %lld | %.0fx | %.2f | %lld | %s |\n", GetParam().c_str(), mesh.triangles.size(),
+              objBytes, static_cast<std::uintmax_t>(sizes.glbGzipBytes), static_cast<std::uintmax_t>(sizes.decodedBytes), png,
+              static_cast<double>(sizes.decodedBytes) / static_cast<double>(png),
+              static_cast<double>(png) / static_cast<double>(sizes.glbGzipBytes), complementTriangles, mode.c_str());
+  EXPECT_LT(png, static_cast<long long>(objBytes) / 10);
+}
+
+INSTANTIATE_TEST_SUITE_P(Samples, SampleSize, ::testing::Values("highrise", "street", "residential", "carpark", "house"));
+
+}  // namespace
+}  // namespace nut::converter
