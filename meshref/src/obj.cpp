@@ -5,14 +5,12 @@
 // every coordinate itself and reports the line; tinyobjloader then parses the same text.
 #include <meshref/obj.hpp>
 
+#include <nut/png_io.hpp>
+
 #include <algorithm>
-#include <cerrno>
 #include <charconv>
 #include <cmath>
-#include <cstring>
 #include <filesystem>
-#include <fstream>
-#include <iterator>
 #include <limits>
 #include <sstream>
 
@@ -79,16 +77,9 @@ void addWarnings(const std::string& path, const std::string& text, std::vector<s
 Result<TriangleMesh> readObj(const std::string& path) {
   std::error_code ec;
   if (std::filesystem::is_directory(path, ec)) return Error{path + ": is a directory, not an OBJ file"};
-  std::ifstream file(path, std::ios::binary);
-  if (!file) return Error{path + ": cannot open (" + std::strerror(errno) + ")"};
-  std::string text;
-  try {
-    // libstdc++ reports some read errors by throwing even without an exception mask.
-    text.assign(std::istreambuf_iterator<char>(file), std::istreambuf_iterator<char>());
-  } catch (const std::ios_base::failure& e) {
-    return Error{path + ": read error (" + e.what() + ")"};
-  }
-  if (file.bad()) return Error{path + ": read error"};
+  auto read = readTextFile(path);
+  if (!read) return read.error();
+  const std::string& text = *read;
   if (Status s = checkVertexLines(path, text); !s) return s.error();
 
   // MTL files are looked up beside the OBJ file.

@@ -4,6 +4,7 @@
 #include <OpenImageIO/imageio.h>
 #include <zlib.h>
 
+#include <cerrno>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
@@ -108,6 +109,22 @@ Status writePfm(const std::string& path, int width, int height, const std::vecto
 }
 
 Status writeTextFile(const std::string& path, const std::string& text) { return writeAtomically(path, text); }
+
+Result<std::string> readTextFile(const std::string& path) {
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec)) return Error{path + ": is a directory, not a file"};
+  std::ifstream file(path, std::ios::binary);
+  if (!file) return Error{path + ": cannot open (" + std::strerror(errno) + ")"};
+  std::string text;
+  try {
+    // libstdc++ reports some read errors by throwing even without an exception mask.
+    text.assign(std::istreambuf_iterator<char>(file), std::istreambuf_iterator<char>());
+  } catch (const std::ios_base::failure& e) {
+    return Error{path + ": read error (" + e.what() + ")"};
+  }
+  if (file.bad()) return Error{path + ": read error"};
+  return text;
+}
 
 Status writePng(const std::string& path, const Image& image, const HniText& text) {
   if (image.width <= 0 || image.height <= 0) return Error{path + ": cannot write an empty image"};

@@ -2,14 +2,13 @@
 // locale-free), objects split at `o` / `g`, materials from `mtllib` files.
 #include <converter/mesh.hpp>
 
+#include <nut/png_io.hpp>
+
 #include <algorithm>
-#include <cerrno>
 #include <charconv>
 #include <cmath>
 #include <cstring>
 #include <filesystem>
-#include <fstream>
-#include <iterator>
 #include <limits>
 #include <map>
 #include <string_view>
@@ -67,20 +66,6 @@ std::uint8_t unitToByte(double v) {
   return static_cast<std::uint8_t>(std::lround(255.0 * std::min(v, 1.0)));
 }
 
-Result<std::string> readText(const std::string& path) {
-  std::error_code ec;
-  if (fs::is_directory(path, ec)) return Error{path + ": is a directory, not a file"};
-  std::ifstream file(path, std::ios::binary);
-  if (!file) return Error{path + ": cannot open (" + std::strerror(errno) + ")"};
-  std::string text;
-  try {
-    text.assign(std::istreambuf_iterator<char>(file), std::istreambuf_iterator<char>());
-  } catch (const std::ios_base::failure& e) {
-    return Error{path + ": read error (" + e.what() + ")"};
-  }
-  if (file.bad()) return Error{path + ": read error"};
-  return text;
-}
 
 // Calls f(lineNumber, line) for every line of text.
 template <typename F>
@@ -117,7 +102,7 @@ struct MaterialTable {
 };
 
 void readMtl(const fs::path& path, MaterialTable& table, std::vector<std::string>& warnings) {
-  auto text = readText(path.string());
+  auto text = readTextFile(path.string());
   if (!text) {
     warnings.push_back(text.error().message + "; its materials use the default grey");
     return;
@@ -194,7 +179,7 @@ double Mesh::area() const {
 }
 
 Result<ObjContents> readObj(const std::string& path, const ObjReadOptions& options) {
-  auto text = readText(path);
+  auto text = readTextFile(path);
   if (!text) return text.error();
   ObjContents out;
   out.fileBytes = text->size();

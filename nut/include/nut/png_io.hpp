@@ -37,6 +37,10 @@ Status writePng(const std::string& path, const Image& image, const HniText& text
 // the format wants; same temporary-file-and-rename rule.
 Status writePfm(const std::string& path, int width, int height, const std::vector<float>& values);
 
+// Reads a whole file (OBJ, MTL, manifests) into memory; errors name the file: missing, a
+// directory, unreadable.
+Result<std::string> readTextFile(const std::string& path);
+
 // Writes a text file (JSON reports) with the same temporary-file-and-rename rule.
 Status writeTextFile(const std::string& path, const std::string& text);
 
