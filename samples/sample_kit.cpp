@@ -307,7 +307,7 @@ SampleSummary writeSample(const nut::Hierarchy& h, const std::string& outDir, co
   text.generator = "nut make_samples";
   // text.units keeps its default, "m" (assigning the literal trips a GCC 12 -Wrestrict false positive).
   text.originM = glm::dvec3(0.0);
-  if (nut::Status s = nut::writePng(path, image, text); !s) throw SampleError(where + ": " + s.error().message);
+  if (nut::Status s = nut::writeHni(path, image, text); !s) throw SampleError(where + ": " + s.error().message);
   const nut::PngFile reread = orFail(nut::readPng(path), where + ": reading back");
   if (!(reread.image == image)) throw SampleError(where + ": the PNG read back differs from the compiled image");
 

@@ -4,7 +4,9 @@
 
 #include <filesystem>
 #include <fstream>
+#include <cstdint>
 #include <random>
+#include <utility>
 
 #include <nut/png_io.hpp>
 
@@ -32,7 +34,7 @@ TEST(PngIo, RoundTripIsBitExact) {
   const fs::path path = outputDir() / "random.png";
   const Image image = randomImage(37, 11, 1);
   HniText text{"test building", "png_io_test", "m", {1234567.891234567, -0.125, 7654321.000000001}};
-  ASSERT_TRUE(writePng(path.string(), image, text).ok());
+  ASSERT_TRUE(writeHni(path.string(), image, text).ok());
   auto read = readPng(path.string());
   ASSERT_TRUE(read.ok()) << read.error().message;
   EXPECT_EQ(read->image, image);
@@ -41,6 +43,43 @@ TEST(PngIo, RoundTripIsBitExact) {
   EXPECT_EQ(read->text.units, "m");
   EXPECT_EQ(read->text.originM, text.originM);  // %.17g keeps doubles exact
   EXPECT_EQ(read->fileBytes, fs::file_size(path));
+}
+
+// An image like an HNI: runs of zeros, repeated rows, a few noisy records.
+Image structuredImage(int w, int h, std::uint64_t seed) {
+  std::mt19937_64 rng(seed);
+  Image image(w, h);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      std::uint8_t* p = image.at(x, y);
+      if (y % 3 == 0 && x < w / 2) p[0] = static_cast<std::uint8_t>(x / 4), p[3] = 2;  // repeated rows
+      if (y == h / 2 && x % 7 == 0) {
+        for (int c = 0; c < 4; ++c) p[c] = static_cast<std::uint8_t>(rng());
+      }
+    }
+  return image;
+}
+
+// Every effort writes a file libpng (through OpenImageIO, an independent decoder) reads back
+// bit-exactly, for shapes that exercise the filters' edges (one column, one row), and a higher
+// effort is never larger.
+TEST(PngIo, EveryEffortRoundTripsAndHigherEffortsAreNotLarger) {
+  for (const auto& [w, h] : {std::pair{1, 1}, {1, 9}, {9, 1}, {64, 48}, {300, 17}}) {
+    for (const Image& image : {randomImage(w, h, 7), structuredImage(w, h, 8)}) {
+      std::size_t previous = SIZE_MAX;
+      for (PngEffort effort : {PngEffort::Quick, PngEffort::Small, PngEffort::Smallest}) {
+        const fs::path path = outputDir() / "effort.png";
+        ASSERT_TRUE(writePng(path.string(), image, effort).ok());
+        auto read = readPng(path.string());
+        ASSERT_TRUE(read.ok()) << read.error().message;
+        EXPECT_EQ(read->image, image) << w << "x" << h << " effort " << static_cast<int>(effort);
+        if (effort != PngEffort::Quick) {
+          EXPECT_LE(read->fileBytes, previous) << w << "x" << h;
+        }
+        previous = read->fileBytes;
+      }
+    }
+  }
 }
 
 TEST(PngIo, WriteLeavesNoTemporaryFiles) {

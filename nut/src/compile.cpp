@@ -6,6 +6,7 @@
 #include <climits>
 #include <cmath>
 #include <map>
+#include <optional>
 #include <string>
 #include <tuple>
 
@@ -41,14 +42,39 @@ using RecordKey = std::tuple<BlockId, std::int64_t, std::int64_t, std::int64_t, 
 struct BlockPlan {
   std::array<AxisIndex, 3> axes;
   std::vector<int> records;  // global record index of each of the block's redirections
+  std::array<int, 3> metaItem{};  // the packed metadata item each axis uses (items are shared)
+  int dataItem = 0;               // the packed data component (shared by blocks with equal cells)
 };
+
+// The pixels of a metadata item (metadata row, then exact row): equal arrays share one item.
+std::string encodedItem(const AxisIndex& index) {
+  std::vector<std::uint8_t> pixels(static_cast<std::size_t>(8 * index.pixels()));
+  encodeAxisIndex(index, pixels.data(), pixels.data() + 4 * index.pixels());
+  return {pixels.begin(), pixels.end()};
+}
+
+// What a data component holds, before packing decides record addresses: its size, then per cell
+// kind, solid, material and texture, or the global record index. Equal keys share one component.
+std::vector<std::int64_t> dataKey(const Block& block, const BlockPlan& plan) {
+  std::vector<std::int64_t> key{block.cellCount(0), block.cellCount(1), block.cellCount(2)};
+  key.reserve(key.size() + block.cells.size());
+  for (const Cell& cell : block.cells) {
+    std::int64_t k = static_cast<std::int64_t>(cell.kind);
+    if (cell.kind == CellKind::Solid)
+      k |= static_cast<std::int64_t>(cell.solid.index) << 8 | static_cast<std::int64_t>(cell.material) << 16 |
+           static_cast<std::int64_t>(cell.texture) << 40;
+    else if (cell.kind == CellKind::Redirection)
+      k |= static_cast<std::int64_t>(plan.records[cell.redirection]) << 8;
+    key.push_back(k);
+  }
+  return key;
+}
 
 // What each packed rectangle holds.
 enum class ItemKind { BlockTable, Header, Metadata, Data, Records, Materials, Textures };
 struct ItemInfo {
   ItemKind kind;
-  int block = 0;  // Header, Metadata, Data
-  int axis = 0;   // Metadata
+  int block = 0;  // Header
   int first = 0;  // Records: first record index in the chunk
 };
 
@@ -143,17 +169,28 @@ Result<Image> compile(const Hierarchy& h, const CompileOptions& options) {
   const int tablePixels = rowsOf(static_cast<int>(h.blocks.size()), format::kBlockTableEntriesPerPixel);
   add({ItemKind::BlockTable}, std::min(tablePixels, format::kBlockTablePixelsPerRow),
       rowsOf(tablePixels, format::kBlockTablePixelsPerRow), true);
+  // Equal metadata arrays (any blocks, any axes) and equal data components are stored once: the
+  // headers address records, and nothing says two may not address the same one.
+  std::map<std::string, int> metaItems;
+  std::map<std::vector<std::int64_t>, int> dataItems;
   for (std::size_t b = 0; b < h.blocks.size(); ++b) {
     const Block& block = h.blocks[b];
     const int bi = static_cast<int>(b);
+    BlockPlan& plan = plans[b];
     add({ItemKind::Header, bi}, format::kHeaderPixels, 1, true);
-    for (int a = 0; a < 3; ++a)
-      add({ItemKind::Metadata, bi, a}, plans[b].axes[static_cast<std::size_t>(a)].pixels(), 2, true);
-    add({ItemKind::Data, bi}, block.cellCount(0) * block.cellCount(2), block.cellCount(1), false);
+    for (int a = 0; a < 3; ++a) {
+      const AxisIndex& index = plan.axes[static_cast<std::size_t>(a)];
+      auto [it, inserted] = metaItems.try_emplace(encodedItem(index), static_cast<int>(items.size()));
+      if (inserted) add({ItemKind::Metadata}, index.pixels(), 2, true);
+      plan.metaItem[static_cast<std::size_t>(a)] = it->second;
+    }
+    auto [it, inserted] = dataItems.try_emplace(dataKey(block, plan), static_cast<int>(items.size()));
+    if (inserted) add({ItemKind::Data}, block.cellCount(0) * block.cellCount(2), block.cellCount(1), false);
+    plan.dataItem = it->second;
   }
   for (int first = 0; first < static_cast<int>(records.size()); first += format::kRedirectionsPerItem) {
     const int count = std::min(format::kRedirectionsPerItem, static_cast<int>(records.size()) - first);
-    add({ItemKind::Records, 0, 0, first}, count * format::kRedirectionPixels, 1, true);
+    add({ItemKind::Records, 0, first}, count * format::kRedirectionPixels, 1, true);
   }
   const int materialCount = static_cast<int>(h.materials.size());
   const int materialsPerRow = std::min(materialCount, format::kMaterialsPerRow);
@@ -169,11 +206,23 @@ Result<Image> compile(const Hierarchy& h, const CompileOptions& options) {
   const packer::Rect fileRecord{0, 0, format::kFileRecordPixels, 1};
   packer::Options packOptions;
   packOptions.reserved = std::span<const packer::Rect>(&fileRecord, 1);
-  auto layout = packer::packSearchWidth(items, options.maxSearchWidth, format::kMaxImageSize, packOptions);
+  // Best-area-fit first, then best-short-side-fit where it packs tighter: shared records leave
+  // fewer small rectangles to fill gaps, and the second rule recovers what that costs.
+  const auto search = [&](packer::Options attempt) {
+    std::optional<packer::Layout> best;
+    for (packer::Heuristic rule : {packer::Heuristic::BestAreaFit, packer::Heuristic::BestShortSideFit}) {
+      attempt.heuristic = rule;
+      if (best) attempt.maxBoundingArea = static_cast<long long>(best->width) * best->height - 1;
+      if (auto layout = packer::packSearchWidth(items, options.maxSearchWidth, format::kMaxImageSize, attempt))
+        best = std::move(layout);
+    }
+    return best;
+  };
+  auto layout = search(packOptions);
   if (!layout) {
     // Large hierarchies: place the 8-bit-addressed records first so they keep the metadata region.
     packOptions.regionLimitedFirst = true;
-    layout = packer::packSearchWidth(items, options.maxSearchWidth, format::kMaxImageSize, packOptions);
+    layout = search(packOptions);
   }
   if (!layout)
     return Error{"the records do not fit a " + std::to_string(format::kMaxImageSize) + "x" +
@@ -181,8 +230,14 @@ Result<Image> compile(const Hierarchy& h, const CompileOptions& options) {
                  "256x256 metadata region; split the hierarchy into several HNIs"};
 
   // Where each record landed.
+  std::vector<packer::Rect> itemAt(items.size());
+  for (const packer::Placement& p : layout->placements) itemAt[static_cast<std::size_t>(p.id)] = p.rect;
   std::vector<packer::Rect> headerAt(h.blocks.size()), dataAt(h.blocks.size());
   std::vector<std::array<packer::Rect, 3>> metaAt(h.blocks.size());
+  for (std::size_t b = 0; b < h.blocks.size(); ++b) {
+    for (std::size_t a = 0; a < 3; ++a) metaAt[b][a] = itemAt[static_cast<std::size_t>(plans[b].metaItem[a])];
+    dataAt[b] = itemAt[static_cast<std::size_t>(plans[b].dataItem)];
+  }
   std::vector<TexelAddress> recordAt(records.size());
   packer::Rect tableAt, materialsAt, texturesAt;
   for (const packer::Placement& p : layout->placements) {
@@ -191,8 +246,8 @@ Result<Image> compile(const Hierarchy& h, const CompileOptions& options) {
     switch (info.kind) {
       case ItemKind::BlockTable: tableAt = p.rect; break;
       case ItemKind::Header: headerAt[b] = p.rect; break;
-      case ItemKind::Metadata: metaAt[b][static_cast<std::size_t>(info.axis)] = p.rect; break;
-      case ItemKind::Data: dataAt[b] = p.rect; break;
+      case ItemKind::Metadata:
+      case ItemKind::Data: break;  // placed above, per block
       case ItemKind::Materials: materialsAt = p.rect; break;
       case ItemKind::Textures: texturesAt = p.rect; break;
       case ItemKind::Records:

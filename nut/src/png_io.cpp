@@ -1,4 +1,5 @@
-// PNG read/write through OpenImageIO, bit-exact for RGBA8, with the HNI text chunks.
+// PNG reading through OpenImageIO and writing through our encoder (png_encode.hpp), bit-exact for
+// RGBA8, with the HNI text chunks; PFM and text files with the same atomic-write rule.
 #include <nut/png_io.hpp>
 
 #include <OpenImageIO/imageio.h>
@@ -21,12 +22,6 @@ constexpr const char* kName = "nut:name";
 constexpr const char* kGenerator = "nut:generator";
 constexpr const char* kUnits = "nut:units";
 constexpr const char* kOrigin = "nut:origin";
-
-std::string formatOrigin(const glm::dvec3& o) {
-  char buffer[128];
-  std::snprintf(buffer, sizeof buffer, "%.17g %.17g %.17g", o.x, o.y, o.z);
-  return buffer;
-}
 
 // A sibling of `path` that no other writer picks.
 std::filesystem::path temporaryPath(const std::filesystem::path& path) {
@@ -126,34 +121,14 @@ Result<std::string> readTextFile(const std::string& path) {
   return text;
 }
 
-Status writePng(const std::string& path, const Image& image, const HniText& text) {
+Status writePng(const std::string& path, const Image& image, PngEffort effort) {
   if (image.width <= 0 || image.height <= 0) return Error{path + ": cannot write an empty image"};
-  const std::filesystem::path target(path);
-  const std::filesystem::path temporary = temporaryPath(target);
-  auto out = OIIO::ImageOutput::create("png");
-  if (!out) return Error{path + ": no PNG writer: " + OIIO::geterror()};
-  OIIO::ImageSpec spec(image.width, image.height, 4, OIIO::TypeDesc::UINT8);
-  spec.attribute("oiio:UnassociatedAlpha", 1);
-  spec.attribute("png:compressionLevel", 9);
-  if (!text.name.empty()) spec.attribute(kName, text.name);
-  if (!text.generator.empty()) spec.attribute(kGenerator, text.generator);
-  if (!text.units.empty()) spec.attribute(kUnits, text.units);
-  spec.attribute(kOrigin, formatOrigin(text.originM));
-  if (!out->open(temporary.string(), spec)) return Error{path + ": " + firstLine(out->geterror())};
-  const bool written = out->write_image(OIIO::TypeDesc::UINT8, image.pixels.data());
-  const bool closed = out->close();
-  if (!written || !closed) {
-    std::error_code ignored;
-    std::filesystem::remove(temporary, ignored);
-    return Error{path + ": " + firstLine(out->geterror())};
-  }
-  std::error_code error;
-  std::filesystem::rename(temporary, target, error);
-  if (error) {
-    std::filesystem::remove(temporary, error);
-    return Error{path + ": cannot rename the written file into place"};
-  }
-  return Ok{};
+  return writeAtomically(path, encodePng(image, nullptr, effort));
+}
+
+Status writeHni(const std::string& path, const Image& image, const HniText& text, PngEffort effort) {
+  if (image.width <= 0 || image.height <= 0) return Error{path + ": cannot write an empty image"};
+  return writeAtomically(path, encodePng(image, &text, effort));
 }
 
 Result<PngFile> readPng(const std::string& path) {

@@ -7,7 +7,6 @@
 #include <filesystem>
 #include <optional>
 
-#include <zlib.h>
 
 #include <nlohmann/json.hpp>
 
@@ -27,15 +26,6 @@ using Clock = std::chrono::steady_clock;
 constexpr std::size_t kMaxFlatCells = 2'000'000;
 // Builds of the grid when the HNI does not fit: as asked, slopes strict, tolerance doubled.
 constexpr int kCoarserAttempts = 3;
-
-// Bytes of the pixels after zlib's best compression: a stand-in for the PNG size (PNG adds row
-// filters, which only help), cheap enough to compare variants.
-std::size_t deflatedSize(const std::vector<std::uint8_t>& bytes) {
-  uLongf size = compressBound(static_cast<uLong>(bytes.size()));
-  std::vector<Bytef> buffer(size);
-  if (compress2(buffer.data(), &size, bytes.data(), static_cast<uLong>(bytes.size()), Z_BEST_COMPRESSION) != Z_OK) return bytes.size();
-  return size;
-}
 
 // Times consecutive phases of the pipeline.
 class Phases {
@@ -115,10 +105,10 @@ bool buildHni(const SolidGrid& grid, const ConvertOptions& options, Conversion& 
     if (b.image) {
       entry.blocks = static_cast<int>(b.hierarchy->blocks.size());
       entry.bytesRaw = static_cast<long long>(b.image->byteSize());
-      entry.bytesDeflated = static_cast<long long>(deflatedSize(b.image->pixels));
-      if (!chosen || static_cast<std::size_t>(entry.bytesDeflated) < chosenBytes) {
+      entry.bytesPng = static_cast<long long>(encodePng(*b.image, nullptr, PngEffort::Small).size());
+      if (!chosen || static_cast<std::size_t>(entry.bytesPng) < chosenBytes) {
         chosen = v;
-        chosenBytes = static_cast<std::size_t>(entry.bytesDeflated);
+        chosenBytes = static_cast<std::size_t>(entry.bytesPng);
         out.hierarchy = std::move(*b.hierarchy);
         out.image = std::move(*b.image);
         report.blocks = std::move(b.stats);
@@ -201,7 +191,7 @@ Status writeConversion(Conversion& conversion, const std::string& pngPath, const
   text.name = conversion.report.name;
   text.generator = "nut convert";
   text.originM = conversion.originM;
-  if (Status s = writePng(pngPath, conversion.image, text); !s) return s;
+  if (Status s = writeHni(pngPath, conversion.image, text); !s) return s;
   std::error_code ec;
   conversion.report.pngBytes = std::filesystem::file_size(pngPath, ec);
   if (!complementPath.empty()) {
@@ -229,7 +219,7 @@ std::string reportJson(const ConvertReport& r) {
                      {"saved_bytes_estimate", b.savedBytes}});
   json variants = json::array();
   for (const VariantReport& v : r.variants)
-    variants.push_back(v.error.empty() ? json{{"name", v.name}, {"blocks", v.blocks}, {"bytes_raw", v.bytesRaw}, {"bytes_deflated", v.bytesDeflated}}
+    variants.push_back(v.error.empty() ? json{{"name", v.name}, {"blocks", v.blocks}, {"bytes_raw", v.bytesRaw}, {"bytes_png", v.bytesPng}}
                                        : json{{"name", v.name}, {"error", v.error}});
   const SolidStats& s = r.solid;
   const double area = s.areaM2 > 0 ? s.areaM2 : 1;

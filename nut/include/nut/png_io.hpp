@@ -1,4 +1,5 @@
-// nut/png_io.hpp — HNI images as PNG files (OpenImageIO), with human metadata in text chunks.
+// nut/png_io.hpp — HNI images as PNG files (read by OpenImageIO, written by png_encode), with
+// human metadata in text chunks.
 //
 // Pixels are stored and read back bit-exactly: alpha is never premultiplied, no colour conversion.
 // Writes go to a temporary file in the destination folder that is renamed over the destination,
@@ -9,20 +10,11 @@
 #include <string>
 #include <vector>
 
-#include <glm/vec3.hpp>
-
 #include <nut/error.hpp>
 #include <nut/image.hpp>
+#include <nut/png_encode.hpp>
 
 namespace nut {
-
-// Stored as PNG text chunks nut:name, nut:generator, nut:units, nut:origin ("x y z", metres).
-struct HniText {
-  std::string name;
-  std::string generator;
-  std::string units = "m";
-  glm::dvec3 originM{0.0};  // world position of the root block's origin, full double precision
-};
 
 struct PngFile {
   Image image;
@@ -30,8 +22,12 @@ struct PngFile {
   std::uintmax_t fileBytes = 0;
 };
 
-// Writes an RGBA8 image. The PNG is compressed at the highest zlib level.
-Status writePng(const std::string& path, const Image& image, const HniText& text = {});
+// Writes an RGBA8 image (a render, a diff) as PNG.
+Status writePng(const std::string& path, const Image& image, PngEffort effort = PngEffort::Quick);
+
+// Writes an HNI: its pixels and text chunks, as small as the effort allows (png_encode.hpp).
+Status writeHni(const std::string& path, const Image& image, const HniText& text,
+                PngEffort effort = PngEffort::Smallest);
 
 // Writes a single-channel float image (e.g. depth) as a little-endian PFM, rows bottom to top as
 // the format wants; same temporary-file-and-rename rule.

@@ -44,7 +44,7 @@ struct VariantReport {
   std::string name;            // "none", "repeats", "repeats+splits"
   int blocks = 0;
   long long bytesRaw = 0;      // the compiled image
-  long long bytesDeflated = 0; // its pixels after zlib's best compression
+  long long bytesPng = 0;  // its PNG at PngEffort::Small (the file written uses Smallest)
   std::string error;           // why it could not be compiled, if it could not
 };
 
