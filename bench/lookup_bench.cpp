@@ -11,7 +11,9 @@
 //
 // The native grid is computed like AxisView's pixel (AxisView::pixelOf): a per-axis scale
 // precomputed once, a float clamp, a truncation. It is as tuned as the NUT path, so the ratios
-// measure the metadata, not a difference in arithmetic.
+// measure the metadata, not a difference in arithmetic: the heuristic lookup does exactly this
+// scale-clamp-truncate (in 1/256-pixel steps), the exact lookup the same four float operations in
+// another order (clamp x, then scale and truncate) plus a truncation of x itself.
 //
 // The NUT's cells have random integer-mm widths in [kMinWidth, kMaxWidth] (fixed seeds); its
 // metadata is built with nut::buildAxisIndex + nut::encodeAxisIndex and laid out like the HNI's

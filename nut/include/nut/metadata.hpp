@@ -69,6 +69,7 @@ struct AxisView {
   float stepSize = 0;                   // D / (256 M): units per step of f
   float lastPixel = 0;                  // the largest float below M
   float lastStep = 0;                   // the largest float below 256 M
+  float exactLast = 0;                  // the largest float <= D whose product with scale is below M
 
   static AxisView make(const std::uint8_t* meta, const std::uint8_t* exact, int pixels, int cells, float size) {
     AxisView v{meta, exact, pixels, cells, size};
@@ -77,6 +78,7 @@ struct AxisView {
     v.stepSize = size / (static_cast<float>(pixels) * format::kFractionSteps);
     v.lastPixel = std::nextafter(static_cast<float>(pixels), 0.0f);
     v.lastStep = std::nextafter(static_cast<float>(pixels * format::kFractionSteps), 0.0f);
+    v.exactLast = exactClampOf(v.size, v.scale, pixels);
     return v;
   }
 
@@ -85,23 +87,45 @@ struct AxisView {
     return static_cast<int>(std::min(lastPixel, std::max(0.0f, x * scale)));
   }
 
-  // Heuristic random access: the cell holding coordinate x. q is x in 1/256-pixel steps; the
-  // pixel is q >> 8 and "f != 0 and the fraction reaches f" is one byte compare (f = 0 wraps
-  // to 255, which no fraction exceeds).
+  // Heuristic random access: the cell holding coordinate x. q is x in 1/256-pixel steps, clamped
+  // like pixelOf; the pixel is q >> 8 and "f != 0 and the fraction reaches f" is one byte compare
+  // (f = 0 wraps to 255, which no fraction exceeds). q is converted straight to a pointer-sized
+  // integer, so indexing needs no extension: beyond the scale, clamp and truncation a uniform grid
+  // pays, a lookup is a copy and a shift, two byte loads, a decrement, a compare and an add.
   int cellHeuristic(float x) const {
-    const auto q = static_cast<std::uint32_t>(static_cast<int>(std::min(lastStep, std::max(0.0f, x * stepScale))));
-    const std::uint8_t* p = meta + 4 * static_cast<std::size_t>(q >> 8);
-    return p[0] + static_cast<int>(static_cast<std::uint8_t>(q) > static_cast<std::uint8_t>(p[1] - 1));
+    const auto q = static_cast<std::ptrdiff_t>(std::min(lastStep, std::max(0.0f, x * stepScale)));
+    const std::ptrdiff_t k = q >> 8;
+    return meta[4 * k] + static_cast<int>(static_cast<std::uint8_t>(q) > static_cast<std::uint8_t>(meta[4 * k + 1] - 1));
   }
 
-  // Exact random access: the metadata pixel picks the candidate, the exact row decides. The exact
-  // pixel is 0 where f = 0 (validate() enforces it), so (e - 1) & 0xffffff + 1 is 2^24 there,
-  // beyond every coordinate inside the block, and the boundary position itself elsewhere.
+  // Exact random access: the metadata pixel picks the candidate, the exact row decides. x is
+  // clamped once, to [0, exactLast] (NaN to 0); then trunc(x * scale) is pixelOf(x) with no second
+  // clamp, and x >= b for an integer boundary b is trunc(x) >= b: no int-to-float conversion. The
+  // exact pixel is 0 where f = 0 and its reserved byte is 0 (validate() enforces both), so e - 1
+  // wraps to 2^32 - 1 there, which no trunc(x) <= D exceeds, and is b - 1 elsewhere: one unsigned
+  // compare. The same cell as before for every float x, including NaN, infinities and x outside
+  // [0, D): see exactClampOf.
   int cellExact(float x) const {
-    const auto k = static_cast<std::size_t>(pixelOf(x));
+    const float c = std::min(exactLast, std::max(0.0f, x));
+    const auto t = static_cast<std::uint32_t>(static_cast<int>(c));
+    const auto k = static_cast<std::ptrdiff_t>(c * scale);
     std::uint32_t e;
     std::memcpy(&e, exact + 4 * k, sizeof e);
-    return meta[4 * k] + static_cast<int>(std::min(x, size) >= static_cast<float>((e - 1) & 0xffffffu) + 1.0f);
+    return meta[4 * k] + static_cast<int>(e - 1 < t);
+  }
+
+  // exactLast for an axis of `pixels` pixels over `size` units: the largest float c <= size with
+  // c * scale < M, found from size down in a step or two (the product rounds within an ulp of M).
+  // It is at least D - 1 and c * scale at least M - 1, so every x above it (up to +inf) has
+  // pixelOf(x) = M - 1 and lies at or beyond every interior boundary (integers <= D - 1), as c
+  // does: clamping x to c changes neither pixel nor cell. 0 for a degenerate axis (no pixels,
+  // size < 1), which keeps lookups in pixel 0.
+  static float exactClampOf(float size, float scale, int pixels) {
+    const auto m = static_cast<float>(pixels);
+    if (!(pixels > 0 && size >= 1.0f && scale > 0.0f)) return 0.0f;
+    float c = size;
+    for (int step = 0; step < 64 && !(c * scale < m); ++step) c = std::nextafter(c, 0.0f);
+    return c * scale < m && c * scale >= m - 1.0f && c >= size - 1.0f ? c : 0.0f;
   }
 
   // Position (units) of the boundary held by metadata pixel k, heuristic: (k + f / 256) D / M.
