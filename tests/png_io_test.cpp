@@ -64,7 +64,8 @@ Image structuredImage(int w, int h, std::uint64_t seed) {
 // bit-exactly, for shapes that exercise the filters' edges (one column, one row), and a higher
 // effort is never larger.
 TEST(PngIo, EveryEffortRoundTripsAndHigherEffortsAreNotLarger) {
-  for (const auto& [w, h] : {std::pair{1, 1}, {1, 9}, {9, 1}, {64, 48}, {300, 17}}) {
+  // 400x200 (320 KB) is deflated in parts on machines with several cores.
+  for (const auto& [w, h] : {std::pair{1, 1}, {1, 9}, {9, 1}, {64, 48}, {300, 17}, {400, 200}}) {
     for (const Image& image : {randomImage(w, h, 7), structuredImage(w, h, 8)}) {
       std::size_t previous = SIZE_MAX;
       for (PngEffort effort : {PngEffort::Quick, PngEffort::Small, PngEffort::Smallest}) {

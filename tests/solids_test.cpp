@@ -8,6 +8,8 @@
 // units. Rays that only touch the cube (chord shorter than kBand) are checked for a finite hit
 // near the solid only.
 #include <nut/solids.hpp>
+#include <nut/format.hpp>
+#include <nut/hierarchy.hpp>
 
 #include <algorithm>
 #include <array>
@@ -560,6 +562,44 @@ TEST(IntersectSolid, EmptyChordMisses) {
   EXPECT_FALSE(nut::intersectSolid<double>(named("box"), {0.5, 0.5, 0.5}, {1, 0, 0}, 1, 0.5));
   EXPECT_FALSE(nut::intersectSolid<double>(named("inverse-octant-c0"), {0.9, 0.9, 0.9},
                                            {1, 0, 0}, 1, 0.5));
+}
+
+// rotateSolid against the rotation itself, at random points (not the grid the table is built
+// from): a point is inside s exactly when its rotated image is inside the rotated solid.
+TEST(RotateSolid, HoldsTheRotatedPointsOfEverySolidUnderEveryRotation) {
+  std::mt19937_64 rng(24);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  for (int r = 0; r < nut::format::kCubeRotationCount; ++r) {
+    const glm::dmat3 m(nut::cubeRotationMatrix(r));
+    for (int i = 0; i < nut::kSolidCount; ++i) {
+      const Solid s{static_cast<std::uint8_t>(i)};
+      const Solid rotated = nut::rotateSolid(s, r);
+      EXPECT_EQ(nut::solidGroup(rotated), nut::solidGroup(s));
+      if (r == 0) {
+        EXPECT_EQ(rotated, s);
+      }
+      int mismatches = 0;
+      for (int k = 0; k < 2000; ++k) {
+        const dvec3 p(unit(rng), unit(rng), unit(rng));
+        mismatches += nut::solidContains(s, p) != nut::solidContains(rotated, m * (p - 0.5) + 0.5);
+      }
+      EXPECT_EQ(mismatches, 0) << nut::solidName(s) << " under rotation " << r;
+    }
+  }
+}
+
+// Turning by A then by B is turning by B A.
+TEST(RotateSolid, ComposesLikeTheMatrices) {
+  for (int a = 0; a < nut::format::kCubeRotationCount; ++a)
+    for (int b = 0; b < nut::format::kCubeRotationCount; ++b) {
+      const auto product = nut::cubeRotationMatrix(b) * nut::cubeRotationMatrix(a);
+      int ba = 0;
+      while (nut::cubeRotationMatrix(ba) != product) ++ba;
+      for (int i = 0; i < nut::kSolidCount; ++i) {
+        const Solid s{static_cast<std::uint8_t>(i)};
+        EXPECT_EQ(nut::rotateSolid(nut::rotateSolid(s, a), b), nut::rotateSolid(s, ba));
+      }
+    }
 }
 
 }  // namespace

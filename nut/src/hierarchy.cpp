@@ -50,6 +50,36 @@ glm::mat<3, 3, int> cubeRotationMatrix(int index) {
   return rotations.at(static_cast<std::size_t>(index));
 }
 
+Solid rotateSolid(Solid s, int cube) {
+  // Found once per (solid, rotation) by comparing inside tests at sample points: the rotated
+  // solid is the one of the same group that holds exactly the rotated points of s. The grid
+  // avoids the regions' boundaries (planes through 1/2, 1/3 and the unit sphere about corners).
+  static const auto table = [] {
+    std::array<std::array<Solid, kSolidCount>, format::kCubeRotationCount> t{};
+    constexpr int kSamples = 5;
+    for (int r = 0; r < format::kCubeRotationCount; ++r) {
+      const glm::dmat3 m(cubeRotationMatrix(r));
+      for (int i = 0; i < kSolidCount; ++i) {
+        const Solid from{static_cast<std::uint8_t>(i)};
+        const SolidGroup group = solidGroup(from);
+        for (int o = 0; o < groupOrientationCount(group); ++o) {
+          const Solid to = makeSolid(group, o);
+          bool same = true;
+          for (int x = 0; x < kSamples && same; ++x)
+            for (int y = 0; y < kSamples && same; ++y)
+              for (int z = 0; z < kSamples && same; ++z) {
+                const glm::dvec3 p = (glm::dvec3(x, y, z) + 0.41) / double{kSamples};
+                same = solidContains(from, p) == solidContains(to, m * (p - 0.5) + 0.5);
+              }
+          if (same) t[static_cast<std::size_t>(r)][static_cast<std::size_t>(i)] = to;
+        }
+      }
+    }
+    return t;
+  }();
+  return table.at(static_cast<std::size_t>(cube))[s.index];
+}
+
 glm::dmat3 rotationMatrix(const Rotation& r) {
   if (r.yaw == 0) return glm::dmat3(cubeRotationMatrix(r.cube));
   // Quarter turns are exact, so that a sub-block turned by one fits its cell without a seam.

@@ -3,16 +3,17 @@
 #include <nut/png_encode.hpp>
 
 #include <zlib.h>
-#include <zopfli/zlib_container.h>
+#include <zopfli/deflate.h>
 #include <zopfli/zopfli.h>
 
 #include <algorithm>
 #include <array>
+#include <charconv>
 #include <cmath>
-#include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <stdexcept>
+#include <thread>
 #include <vector>
 
 namespace nut {
@@ -126,17 +127,53 @@ Bytes zlibCompress(const Bytes& data, int level) {
   return out;
 }
 
+// Appends `bits` bits of `stream` (deflate's order: least significant bit first) to `out`, which
+// holds `outBits` bits. Unused high bits of both last bytes are zero.
+void appendBits(Bytes& out, std::size_t& outBits, const std::uint8_t* stream, std::size_t bits) {
+  const unsigned shift = outBits % 8;
+  out.resize((outBits + bits + 7) / 8, 0);
+  for (std::size_t i = 0; i < (bits + 7) / 8; ++i) {
+    const std::size_t at = outBits / 8 + i;
+    out[at] = static_cast<std::uint8_t>(out[at] | stream[i] << shift);
+    if (shift != 0 && at + 1 < out.size()) out[at + 1] = static_cast<std::uint8_t>(out[at + 1] | stream[i] >> (8 - shift));
+  }
+  outBits += bits;
+}
+
+// Zopfli, in one part per core: part i compresses its slice of the stream with everything before
+// it as the back window, so the parts' deflate blocks join into the stream one pass would make
+// (block boundaries aside) in a fraction of the time. Wrapped as zlib (header, Adler-32).
 Bytes zopfliCompress(const Bytes& data) {
   ZopfliOptions options;
   ZopfliInitOptions(&options);
   // One pass: on HNI pixel streams (long runs and repeats) it is 15 % smaller than zlib's best,
   // and 5 passes gain 1 % more in 2.5 times the time.
   options.numiterations = 1;
-  unsigned char* out = nullptr;
-  std::size_t size = 0;
-  ZopfliZlibCompress(&options, data.data(), data.size(), &out, &size);
-  Bytes result(out, out + size);
-  std::free(out);
+  constexpr std::size_t kMinPart = 64 * 1024;
+  const std::size_t parts = std::clamp<std::size_t>(data.size() / kMinPart, 1, std::max(1u, std::thread::hardware_concurrency()));
+  struct Part {
+    unsigned char* bytes = nullptr;
+    std::size_t size = 0;
+    unsigned char bitPointer = 0;
+  };
+  std::vector<Part> out(parts);
+  std::vector<std::thread> workers;
+  for (std::size_t i = 0; i < parts; ++i)
+    workers.emplace_back([&, i] {
+      ZopfliDeflatePart(&options, 2, i + 1 == parts, data.data(), data.size() * i / parts, data.size() * (i + 1) / parts,
+                        &out[i].bitPointer, &out[i].bytes, &out[i].size);
+    });
+  for (std::thread& t : workers) t.join();
+  Bytes result{0x78, 0xda};  // zlib: deflate, 32 KB window, maximum compression
+  std::size_t resultBits = 8 * result.size();
+  for (Part& part : out) {
+    // The bit pointer is how many bits of the last byte are used, 0 when it is full.
+    const std::size_t bits = part.size * 8 - (part.bitPointer == 0 ? 0 : 8 - part.bitPointer);
+    appendBits(result, resultBits, part.bytes, bits);
+    std::free(part.bytes);
+  }
+  const auto adler = adler32(adler32(0L, Z_NULL, 0), data.data(), static_cast<uInt>(data.size()));
+  for (int shift = 24; shift >= 0; shift -= 8) result.push_back(static_cast<std::uint8_t>(adler >> shift));
   return result;
 }
 
@@ -179,10 +216,16 @@ void appendText(std::string& out, const std::string& keyword, const std::string&
   appendChunk(out, "tEXt", reinterpret_cast<const std::uint8_t*>(data.data()), data.size());
 }
 
+// The shortest decimal form of each coordinate that reads back as the same double.
 std::string formatOrigin(const glm::dvec3& o) {
-  char buffer[128];
-  std::snprintf(buffer, sizeof buffer, "%.17g %.17g %.17g", o.x, o.y, o.z);
-  return buffer;
+  std::string text;
+  for (int a = 0; a < 3; ++a) {
+    char buffer[32];
+    const auto end = std::to_chars(buffer, buffer + sizeof buffer, o[a]).ptr;
+    if (a > 0) text += ' ';
+    text.append(buffer, end);
+  }
+  return text;
 }
 
 }  // namespace

@@ -61,6 +61,11 @@ struct Rotation {
 glm::mat<3, 3, int> cubeRotationMatrix(int index);
 glm::dmat3 rotationMatrix(const Rotation& r);
 
+// The solid whose region is the image of s's region under cube rotation `cube` about the unit
+// cube's centre: what a cell holding s looks like from a block turned by that rotation. Used to
+// re-express a block in another axis order (the same group, another orientation).
+Solid rotateSolid(Solid s, int cube);
+
 struct Redirection {
   BlockId target = 0;
   glm::dvec3 offsetM{0.0};            // target origin relative to the cell's minimum corner
