@@ -26,7 +26,7 @@ struct ConvertCliOptions {
   std::string input, output, complement, report;
   double toleranceM = 0.01;
   double angleDeg = 1.0;
-  bool zUp = false, quiet = false, noAutoBlocks = false, noWedges = false;
+  bool zUp = false, quiet = false, noAutoBlocks = false, noWedges = false, noAlign = false, noAxisOrder = false;
   std::vector<std::string> blocks;
   int threads = 0;
 };
@@ -77,9 +77,10 @@ void printSummary(const converter::ConvertReport& r, const std::string& output) 
   const auto& s = r.solid;
   std::fprintf(stderr, "convert: %s: %s\n", r.name.c_str(), r.check.summary().c_str());
   std::fprintf(stderr,
-               "convert: %s: grid %dx%dx%d, %lld solid cells (%lld wedges), %d blocks; surface %.1f %% NUT, %.1f %% "
-               "complementary mesh (%zu triangles)\n",
-               r.name.c_str(), s.cells[0], s.cells[1], s.cells[2], s.solidCells, s.wedgeCells, r.hni.blocks,
+               "convert: %s: yaw %.2f deg (%s); grid %dx%dx%d, %lld solid cells (%lld wedges), %d blocks; surface %.1f %% "
+               "NUT, %.1f %% complementary mesh (%zu triangles)\n",
+               r.name.c_str(), r.yawDeg, r.yawApplied ? "converted in that frame" : "not aligned", s.cells[0], s.cells[1],
+               s.cells[2], s.solidCells, s.wedgeCells, r.hni.blocks,
                s.areaM2 > 0 ? 100 * s.nutAreaM2 / s.areaM2 : 0.0, s.areaM2 > 0 ? 100 * s.complementAreaM2 / s.areaM2 : 0.0,
                r.complementTriangles);
   std::fprintf(stderr, "convert: wrote %s (%dx%d, %lld bytes raw, %ju bytes PNG) in %.2f s\n", output.c_str(), r.hni.width,
@@ -102,7 +103,9 @@ int run(const ConvertCliOptions& o) {
   options.solid.angleToleranceDeg = o.angleDeg;
   options.solid.wedges = !o.noWedges;
   options.solid.threads = o.threads;
+  options.alignYaw = !o.noAlign;
   options.blocks.automatic = !o.noAutoBlocks;
+  options.axisOrder = !o.noAxisOrder;
   for (const std::string& text : o.blocks) {
     auto box = parseBox(text);
     if (!box) return fail(box.error().message, kUsage);
@@ -162,6 +165,7 @@ int run(const ConvertCliOptions& o) {
                                               hasComplement ? (fs::path(o.output) / complement).string() : "");
         !s)
       return fail(s.error().message, kUnreadable);
+    // Yaw 0: a turned building carries its yaw inside its HNI, which is in the world frame.
     city.buildings.push_back({name, hni, complement, conversion->originM, 0.0});
     reports.push_back(nlohmann::json::parse(converter::reportJson(conversion->report)));
     if (!o.quiet) printSummary(conversion->report, (fs::path(o.output) / hni).string());
@@ -193,7 +197,12 @@ void addConvertCommand(CLI::App& app, int& exitCode) {
   cmd->add_option("--report", o->report, "Write the conversion report as JSON (timings, grid, blocks, bytes, surface fractions)");
   cmd->add_flag("--quiet", o->quiet, "No progress bar, summary or warnings on stderr");
   cmd->add_flag("--no-auto-blocks", o->noAutoBlocks, "Do not search for repeated blocks");
+  cmd->add_flag("--no-axis-order", o->noAxisOrder,
+                "Keep the grid's axes as they are instead of trying the order whose cells compress best");
   cmd->add_flag("--no-wedges", o->noWedges, "Leave sloped faces to the complementary mesh instead of fitting wedge cells");
+  cmd->add_flag("--no-align", o->noAlign,
+                "Convert a building turned about the vertical in the world frame instead of its own (most of it then "
+                "goes to the complementary mesh)");
   cmd->add_option("--block", o->blocks, "Extract this box of cells as a block, x0,y0,z0:x1,y1,z1 in world metres (repeatable)");
   cmd->add_option("--threads", o->threads, "Worker threads (0: all cores)")->check(CLI::NonNegativeNumber);
   cmd->footer("Examples:\n  nut convert samples/obj/highrise.obj -o highrise.png --complement highrise-rest.obj --report report.json\n"

@@ -12,8 +12,8 @@
 //
 // The parts are decomposed the same way, recursively, so a floor repeated up a tower is found
 // first and the window bay repeated along the floor inside it. The cost model counts cells (4
-// bytes each in a data component); a cut is taken when it saves more than a new block's header
-// and metadata cost.
+// bytes each in a data component); a cut is taken when it saves at least BlockOptions::
+// minSavedCells cells.
 #include <converter/blocks.hpp>
 
 #include <algorithm>
@@ -36,9 +36,6 @@ long long estimatedBytes(const Block& b) {
 
 namespace {
 
-// A cut must save at least this many cells: a new block costs a header (12 pixels), three
-// metadata items (2 x (cells + 1) pixels each) and a redirection record (4 pixels).
-constexpr long long kMinSavedCells = 32;
 // Deeper than this the ray casters' 32-level stack would run out (docs/RENDERING.md).
 constexpr int kMaxDepth = 24;
 // Repeats longer than this many layers per period are not searched for.
@@ -295,14 +292,14 @@ class Decomposer {
   Part decompose(Block b, int depth) {
     simplify(b);
     if (auto uniform = uniformCell(b)) return {*uniform, std::nullopt, {false, false, false}};
-    if (depth >= kMaxDepth || b.cells.size() <= static_cast<std::size_t>(kMinSavedCells)) return emit(std::move(b));
+    if (depth >= kMaxDepth || b.cells.size() <= static_cast<std::size_t>(options_.minSavedCells)) return emit(std::move(b));
 
     std::optional<Run> run;
     for (int a = 0; a < 3; ++a)
       if (auto r = findRun(b, a, options_.toleranceM); r && (!run || r->savedCells > run->savedCells)) run = r;
     const std::optional<Cut> cut = options_.cuts ? findCut(b) : std::nullopt;
     const long long runSaved = run ? run->savedCells : 0, cutSaved = cut ? cut->savedCells : 0;
-    if (std::max(runSaved, cutSaved) < kMinSavedCells) return emit(std::move(b));
+    if (std::max(runSaved, cutSaved) < options_.minSavedCells) return emit(std::move(b));
     if (runSaved >= cutSaved) return repeat(b, *run, depth);
     return split(b, *cut, depth);
   }

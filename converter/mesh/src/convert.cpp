@@ -1,16 +1,21 @@
 // The conversion pipeline and its report (converter/convert.hpp).
 #include <converter/convert.hpp>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <functional>
+#include <iterator>
 #include <filesystem>
 #include <optional>
 
 
 #include <nlohmann/json.hpp>
 
+#include <converter/align.hpp>
 #include <converter/assemble.hpp>
+#include <converter/axis_order.hpp>
 #include <nut/mesh_export.hpp>
 #include <nut/png_io.hpp>
 
@@ -24,6 +29,10 @@ using Clock = std::chrono::steady_clock;
 
 // A flat grid larger than this is not tried as a variant: it would not fit an HNI anyway.
 constexpr std::size_t kMaxFlatCells = 2'000'000;
+// The block extraction thresholds tried: on the samples 32 suits the street's houses, 2048 the
+// high-rise's storeys and bays, 32768 the residential block, whose balconies cost more as blocks
+// than as repeated rows of its grid.
+constexpr long long kMinSavedCellsTried[] = {32, 2048, 32768};
 // Builds of the grid when the HNI does not fit: as asked, slopes strict, tolerance doubled.
 constexpr int kCoarserAttempts = 3;
 
@@ -44,77 +53,123 @@ class Phases {
 
 nlohmann::json vec3Json(const glm::dvec3& v) { return nlohmann::json::array({v.x, v.y, v.z}); }
 
-// Builds the hierarchy variants from the grid, compiles each and keeps in `out` the one whose
-// pixels deflate smallest. False when none fits an HNI (lastError says why).
+// One way of building the hierarchy: the grid in some axis order, and how blocks are extracted.
+struct Variant {
+  std::string name;
+  BlockOptions options;
+  const TurnedBlock* grid;
+};
+
+struct BuiltVariant {
+  Result<Hierarchy> hierarchy = Error{""};
+  Result<Image> image = Error{""};
+  BlockStats stats;
+  int split = 0;
+  std::size_t pngBytes = 0;  // PngEffort::Small
+};
+
+BuiltVariant buildVariant(const SolidGrid& grid, const Variant& v, const ConvertOptions& options) {
+  BuiltVariant b;
+  b.hierarchy = buildHierarchy(v.grid->block, grid.materials, grid.originM, v.options, b.stats);
+  if (!b.hierarchy) {
+    b.image = b.hierarchy.error();
+    return b;
+  }
+  if (v.grid->cube != 0) wrapRoot(*b.hierarchy, grid.block.sizeM(), v.grid->cube, v.grid->offsetM);
+  compactMaterials(*b.hierarchy);
+  auto added = splitBlocks(*b.hierarchy);
+  if (!added) {
+    b.image = added.error();
+    return b;
+  }
+  b.split = *added;
+  b.image = compile(*b.hierarchy, options.compile);
+  if (b.image) b.pngBytes = encodePng(*b.image, nullptr, PngEffort::Small).size();
+  return b;
+}
+
+// Builds the variants, each on its own thread (they share nothing).
+std::vector<BuiltVariant> buildVariants(const SolidGrid& grid, const std::vector<Variant>& variants,
+                                        const ConvertOptions& options) {
+  std::vector<BuiltVariant> built(variants.size());
+  parallelFor(variants.size(), 1, options.solid.threads, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t v = begin; v < end; ++v) built[v] = buildVariant(grid, variants[v], options);
+  });
+  return built;
+}
+
+// Builds hierarchy variants from the grid, compiles each and keeps in `out` the one whose PNG is
+// smallest. False when none fits an HNI (lastError says why).
 bool buildHni(const SolidGrid& grid, const ConvertOptions& options, Conversion& out, ConvertReport& report,
               std::string& lastError, const std::function<void(std::string_view, double)>& progress) {
   // Block extraction pays on repetitive buildings and costs headers and metadata on small ones,
   // and PNG compression already shrinks repeated rows of a flat grid; so the variants are
-  // compiled and the one whose pixels deflate smallest is kept (each is reported).
+  // compiled and the smallest is kept (each is reported).
   progress("hierarchy", 0);
-  struct Variant {
-    std::string name;
-    BlockOptions options;
-  };
-  std::vector<Variant> variants;
   BlockOptions base = options.blocks;
   base.toleranceM = options.solid.toleranceM;
   const bool flatFeasible = grid.block.cells.size() <= kMaxFlatCells;
-  if (!base.automatic || flatFeasible) {
-    variants.push_back({"none", base});
-    variants.back().options.automatic = false;
-  }
-  if (base.automatic) {
-    variants.push_back({"repeats", base});
-    variants.back().options.cuts = false;
-    variants.push_back({"repeats+splits", base});
-  }
-  // Each variant is built and compiled on its own thread (they share nothing), then the smallest
-  // is kept, in variant order so the choice does not depend on timing.
-  struct Built {
-    Result<Hierarchy> hierarchy = Error{""};
-    Result<Image> image = Error{""};
-    BlockStats stats;
-    int split = 0;
-  };
-  std::vector<Built> built(variants.size());
-  parallelFor(variants.size(), 1, options.solid.threads, [&](std::size_t begin, std::size_t end) {
-    for (std::size_t v = begin; v < end; ++v) {
-      Built& b = built[v];
-      b.hierarchy = buildHierarchy(grid.block, grid.materials, grid.originM, variants[v].options, b.stats);
-      if (!b.hierarchy) {
-        b.image = b.hierarchy.error();
-        continue;
-      }
-      compactMaterials(*b.hierarchy);
-      auto added = splitBlocks(*b.hierarchy);
-      if (!added) {
-        b.image = added.error();
-        continue;
-      }
-      b.split = *added;
-      b.image = compile(*b.hierarchy, options.compile);
+  const auto variantsOf = [&](const TurnedBlock& g) {
+    const std::string turned = g.cube == 0 ? "" : ", axes turned by rotation " + std::to_string(g.cube);
+    std::vector<Variant> list;
+    if (!base.automatic || flatFeasible) {
+      list.push_back({"none" + turned, base, &g});
+      list.back().options.automatic = false;
     }
-  });
+    if (!base.automatic) return list;
+    // From many small blocks to a few large ones (see BlockOptions::minSavedCells).
+    for (long long minSaved : kMinSavedCellsTried) {
+      const std::string suffix = " (>= " + std::to_string(minSaved) + " cells" + turned + ")";
+      list.push_back({"repeats" + suffix, base, &g});
+      list.back().options.cuts = false;
+      list.back().options.minSavedCells = minSaved;
+      list.push_back({"repeats+splits" + suffix, base, &g});
+      list.back().options.minSavedCells = minSaved;
+    }
+    return list;
+  };
+
+  // The grid in every axis order (axis_order.hpp), when the grid is small enough for a flat
+  // variant and no manual block names world boxes of the grid as it is.
+  std::vector<TurnedBlock> orders{{grid.block, 0, glm::dvec3(0.0)}};
+  if (options.blocks.manual.empty() && flatFeasible && options.axisOrder)
+    for (int cube : axisOrderRotations())
+      if (cube != 0) orders.push_back(turnBlock(grid.block, cube));
+  std::vector<Variant> variants;
+  std::vector<BuiltVariant> built;
+  std::vector<const TurnedBlock*> searched{&orders[0]};
+  if (orders.size() > 1) {
+    // Every order is probed with the last variant of its list (fewest, largest blocks), and the
+    // two whose probes are smallest get every variant.
+    for (const TurnedBlock& g : orders) variants.push_back(variantsOf(g).back());
+    built = buildVariants(grid, variants, options);
+    std::vector<std::size_t> rank(orders.size());
+    for (std::size_t i = 0; i < rank.size(); ++i) rank[i] = i;
+    const auto probeBytes = [&](std::size_t i) { return built[i].image ? built[i].pngBytes : SIZE_MAX; };
+    std::stable_sort(rank.begin(), rank.end(), [&](std::size_t x, std::size_t y) { return probeBytes(x) < probeBytes(y); });
+    searched = {&orders[rank[0]], &orders[rank[1]]};
+  }
+  std::vector<Variant> more;
+  for (const TurnedBlock* g : searched) {
+    std::vector<Variant> list = variantsOf(*g);
+    if (orders.size() > 1) list.pop_back();  // the probe, built already
+    more.insert(more.end(), list.begin(), list.end());
+  }
+  std::vector<BuiltVariant> moreBuilt = buildVariants(grid, more, options);
+  variants.insert(variants.end(), more.begin(), more.end());
+  std::move(moreBuilt.begin(), moreBuilt.end(), std::back_inserter(built));
+
+  // The smallest, in variant order on ties so the choice does not depend on timing.
   std::optional<std::size_t> chosen;
-  std::size_t chosenBytes = 0;
   report.variants.clear();
   for (std::size_t v = 0; v < variants.size(); ++v) {
-    Built& b = built[v];
+    BuiltVariant& b = built[v];
     VariantReport entry{variants[v].name, 0, 0, 0, ""};
     if (b.image) {
       entry.blocks = static_cast<int>(b.hierarchy->blocks.size());
       entry.bytesRaw = static_cast<long long>(b.image->byteSize());
-      entry.bytesPng = static_cast<long long>(encodePng(*b.image, nullptr, PngEffort::Small).size());
-      if (!chosen || static_cast<std::size_t>(entry.bytesPng) < chosenBytes) {
-        chosen = v;
-        chosenBytes = static_cast<std::size_t>(entry.bytesPng);
-        out.hierarchy = std::move(*b.hierarchy);
-        out.image = std::move(*b.image);
-        report.blocks = std::move(b.stats);
-        report.splitBlocks = b.split;
-        report.blockMode = variants[v].name;
-      }
+      entry.bytesPng = static_cast<long long>(b.pngBytes);
+      if (!chosen || b.pngBytes < built[*chosen].pngBytes) chosen = v;
     } else {
       entry.error = b.image.error().message;
       lastError = b.image.error().message;
@@ -123,6 +178,13 @@ bool buildHni(const SolidGrid& grid, const ConvertOptions& options, Conversion& 
   }
   progress("hierarchy", 1);
   if (!chosen) return false;
+  BuiltVariant& b = built[*chosen];
+  out.hierarchy = std::move(*b.hierarchy);
+  out.image = std::move(*b.image);
+  report.blocks = std::move(b.stats);
+  report.splitBlocks = b.split;
+  report.blockMode = variants[*chosen].name;
+  report.axisOrderCube = variants[*chosen].grid->cube;
   report.hni = computeStats(out.image);
   return true;
 }
@@ -153,6 +215,24 @@ Result<Conversion> convertMesh(Mesh mesh, const ConvertOptions& options) {
                       (report.check.closed() ? "closed mesh" : "open mesh: no closed surface needed") + ")";
   phases.end("check");
 
+  // A building turned about the vertical is converted in its own frame (align.hpp); a dominant
+  // orientation within the angle tolerance of the axes needs no turn.
+  const std::uint16_t yaw = dominantYaw(mesh, options.solid.angleToleranceDeg);
+  report.yawDeg = yawDegrees(yaw);
+  std::optional<YawFrame> frame;
+  if (options.alignYaw && std::abs(report.yawDeg) > options.solid.angleToleranceDeg) {
+    if (options.blocks.manual.empty()) {
+      frame = YawFrame{yaw, mesh.bounds().centre()};
+      toAlignedFrame(mesh, *frame);
+    } else {
+      char degrees[32];
+      std::snprintf(degrees, sizeof degrees, "%.2f", report.yawDeg);
+      report.warnings.push_back(std::string("the building is turned by ") + degrees +
+                                " degrees but not aligned: --block boxes are world boxes");
+    }
+  }
+  report.yawApplied = frame.has_value();
+
   // The grid is built as asked; when no hierarchy made from it fits an HNI, it is built again
   // coarser: first keeping only slopes that became wedges everywhere, then with the tolerance
   // doubled, each time with a warning in the report.
@@ -182,6 +262,17 @@ Result<Conversion> convertMesh(Mesh mesh, const ConvertOptions& options) {
   }
   if (!grid) return Error{mesh.name + ": " + lastError};
   out.complement = std::move(grid->complement);
+  if (frame) {
+    // Back to the world: the hierarchy inside a yaw redirection, compiled again, and the
+    // complementary mesh turned back.
+    out.originM = report.originM = wrapInWorldFrame(out.hierarchy, out.originM, *frame);
+    auto image = compile(out.hierarchy, options.compile);
+    if (!image) return Error{mesh.name + ": " + image.error().message};
+    out.image = std::move(*image);
+    report.hni = computeStats(out.image);
+    toWorldFrame(out.complement, *frame);
+    phases.end("align");
+  }
   report.complementTriangles = out.complement.triangles.size();
   return out;
 }
@@ -240,6 +331,7 @@ std::string reportJson(const ConvertReport& r) {
                  {"flipped_faces", r.check.flippedTriangles},
                  {"closed", r.check.closed()}}},
       {"inside_test", r.insideTest},
+      {"alignment", {{"yaw_deg", r.yawDeg}, {"applied", r.yawApplied}}},
       {"grid", {{"planes", s.planes},
                 {"cells", s.cells},
                 {"sweep_axis", std::string(1, "xyz"[s.sweepAxis])},
@@ -258,6 +350,7 @@ std::string reportJson(const ConvertReport& r) {
                    {"complement_fraction", s.complementAreaM2 / area},
                    {"complement_triangles", r.complementTriangles}}},
       {"blocks", {{"mode", r.blockMode},
+                  {"axis_order_rotation", r.axisOrderCube},
                   {"variants", variants},
                   {"found", found},
                   {"split_for_limits", r.splitBlocks},

@@ -28,7 +28,7 @@ struct HniText {
 
 enum class PngEffort {
   Quick,     // per-row least-sum filters, zlib level 6: renders and diff images
-  Small,     // the best of the cheap filter strategies, zlib level 9: comparing candidate layouts
+  Small,     // the best of three filter strategies, zlib level 9: comparing candidate layouts
   Smallest,  // every strategy, the winner re-deflated by Zopfli: HNIs (about 1 s per megabyte)
 };
 

@@ -28,7 +28,11 @@ struct BlockOptions {
   bool cuts = true;              // also split blocks in two where the halves need fewer boundaries
   std::vector<WorldBox> manual;  // world metres; each is snapped outwards to whole cells of G0
   double toleranceM = 0.01;      // widths that match within this are equal
-  int maxRounds = 64;            // extraction rounds per block
+  // A repeat or split is taken only when it removes at least this many cells. A new block costs a
+  // header, three metadata items and a record (about 100 bytes in a PNG) while a cell of a
+  // repetitive grid deflates to a few hundredths of a byte, so the best threshold depends on the
+  // building: the converter builds several and keeps the smallest PNG.
+  long long minSavedCells = 32;
 };
 
 struct ExtractedBlock {

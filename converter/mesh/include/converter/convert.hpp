@@ -1,6 +1,7 @@
 // converter/convert.hpp — the whole mesh-to-NUT conversion (paper section 5) as one call, and its
-// report: check and repair the mesh, solid conversion (solid.hpp), block extraction
-// (blocks.hpp), splitting to the format's limits (assemble.hpp), compilation to an HNI image.
+// report: check and repair the mesh, yaw alignment (align.hpp), solid conversion (solid.hpp), block
+// extraction (blocks.hpp), splitting to the format's limits (assemble.hpp), compilation to an HNI
+// image.
 // docs/CONVERTER.md describes each step and the report's fields.
 #pragma once
 
@@ -29,6 +30,12 @@ struct ConvertOptions {
   SolidOptions solid;
   BlockOptions blocks;
   CompileOptions compile;
+  // Convert a building that is not axis-aligned in its own frame, turned back by a yaw redirection
+  // (align.hpp). Not with manual blocks, whose boxes are world boxes.
+  bool alignYaw = true;
+  // Build the hierarchy from the grid in the axis order whose cells compress best, with a root
+  // that turns it back (axis_order.hpp). Not with manual blocks.
+  bool axisOrder = true;
   // Progress of the current phase: its name and the fraction done (0..1). Called from the
   // calling thread only.
   std::function<void(std::string_view phase, double fraction)> progress;
@@ -53,6 +60,9 @@ struct ConvertReport {
   std::size_t inputTriangles = 0;
   MeshCheck check;
   std::string insideTest;         // how occupancy was decided, in words
+  double yawDeg = 0;              // the building's dominant orientation about +y (align.hpp)
+  bool yawApplied = false;        // converted in that frame and wrapped in a yaw redirection
+  int axisOrderCube = 0;          // the variant kept turned the grid by this rotation (0: none)
   SolidStats solid;
   BlockStats blocks;
   std::string blockMode;              // the variant kept
