@@ -2,11 +2,11 @@
 //
 // An HNI stores a block's cells as its z slices side by side, one image row per y layer, and the
 // PNG's deflate finds repeats along rows and between neighbouring rows. Which axis of a building
-// runs along the rows decides how much of its repetition deflate can see: on the residential
-// sample the data component is 20 % smaller with x as the row axis. So the converter may build
-// the hierarchy from the grid turned into another axis order and let a root of one cell redirect
-// to it with the cube rotation that turns it back (the format's 24 rotations; solids are turned
-// with it).
+// runs along the rows decides how much of its repetition deflate can see, and which blocks the
+// extraction finds: the residential sample's smallest HNI is 12 % smaller in another axis order
+// (6,279 B against 7,119 B). So the converter may build the hierarchy from the grid turned into
+// another axis order and let a root of one cell redirect to it with the cube rotation that turns
+// it back (the format's 24 rotations; solids are turned with it).
 #pragma once
 
 #include <vector>
