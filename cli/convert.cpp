@@ -29,7 +29,10 @@ struct ConvertCliOptions {
   bool zUp = false, quiet = false, noAutoBlocks = false, noWedges = false, noAlign = false, noAxisOrder = false;
   std::vector<std::string> blocks;
   int threads = 0;
+  std::string pngEffort = "smallest";
 };
+
+PngEffort effortOf(const ConvertCliOptions& o) { return o.pngEffort == "small" ? PngEffort::Small : PngEffort::Smallest; }
 
 // A progress bar on stderr: redrawn in place on a terminal, one line per phase otherwise.
 class ProgressBar {
@@ -133,7 +136,7 @@ int run(const ConvertCliOptions& o) {
                                                        : "";
       return fail(o.input + ": " + conversion.error().message + hint, kInvalid);
     }
-    if (Status s = converter::writeConversion(*conversion, o.output, o.complement); !s) return fail(s.error().message, kUnreadable);
+    if (Status s = converter::writeConversion(*conversion, o.output, o.complement, effortOf(o)); !s) return fail(s.error().message, kUnreadable);
     if (!o.report.empty())
       if (Status s = writeTextFile(o.report, converter::reportJson(conversion->report)); !s) return fail(s.error().message, kUnreadable);
     if (!o.quiet) printSummary(conversion->report, o.output);
@@ -162,7 +165,8 @@ int run(const ConvertCliOptions& o) {
     const bool hasComplement = !conversion->complement.triangles.empty();
     const std::string hni = stem + ".png", complement = hasComplement ? stem + ".complement.obj" : "";
     if (Status s = converter::writeConversion(*conversion, (fs::path(o.output) / hni).string(),
-                                              hasComplement ? (fs::path(o.output) / complement).string() : "");
+                                              hasComplement ? (fs::path(o.output) / complement).string() : "",
+                                              effortOf(o));
         !s)
       return fail(s.error().message, kUnreadable);
     // Yaw 0: a turned building carries its yaw inside its HNI, which is in the world frame.
@@ -205,6 +209,10 @@ void addConvertCommand(CLI::App& app, int& exitCode) {
                 "goes to the complementary mesh)");
   cmd->add_option("--block", o->blocks, "Extract this box of cells as a block, x0,y0,z0:x1,y1,z1 in world metres (repeatable)");
   cmd->add_option("--threads", o->threads, "Worker threads (0: all cores)")->check(CLI::NonNegativeNumber);
+  cmd->add_option("--png-effort", o->pngEffort,
+                  "smallest: Zopfli, about a second per 150 KB of pixels; small: zlib, milliseconds, 5-15 % larger")
+      ->check(CLI::IsMember({"small", "smallest"}))
+      ->capture_default_str();
   cmd->footer("Examples:\n  nut convert samples/obj/highrise.obj -o highrise.png --complement highrise-rest.obj --report report.json\n"
               "  nut convert samples/obj/street.obj -o street/        # one HNI per object + street/city.json");
   cmd->callback([o, &exitCode] { exitCode = run(*o); });

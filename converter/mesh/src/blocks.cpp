@@ -94,6 +94,32 @@ bool sameLayers(const Block& b, const Strides& st, int i, int j) {
   return true;
 }
 
+// Per axis, a hash of each layer's cells, in one pass over the cells in memory order (walking a
+// layer across the array is what costs: its cells are far apart for x layers). Every layer of an
+// axis is hashed in the same cell order, so equal layers hash equal.
+struct LayerSummary {
+  std::array<std::vector<std::uint64_t>, 3> hash;
+};
+LayerSummary summarizeLayers(const Block& b) {
+  LayerSummary s;
+  for (int a = 0; a < 3; ++a)
+    s.hash[static_cast<std::size_t>(a)].assign(static_cast<std::size_t>(b.cellCount(a)), 1469598103934665603ull);
+  std::size_t index = 0;
+  for (int z = 0; z < b.cellCount(2); ++z)
+    for (int y = 0; y < b.cellCount(1); ++y)
+      for (int x = 0; x < b.cellCount(0); ++x, ++index) {
+        const Cell& c = b.cells[index];
+        const std::uint64_t v = static_cast<std::uint64_t>(c.kind) | static_cast<std::uint64_t>(c.solid.index) << 8 |
+                                static_cast<std::uint64_t>(c.material) << 16 | static_cast<std::uint64_t>(c.redirection) << 32;
+        const std::array<int, 3> at{x, y, z};
+        for (std::size_t a = 0; a < 3; ++a) {
+          auto& h = s.hash[a][static_cast<std::size_t>(at[a])];
+          h = (h ^ v) * 1099511628211ull;
+        }
+      }
+  return s;
+}
+
 // Whether layers i and i + 1 hold the same boxes and empty cells.
 bool mergeableLayers(const Block& b, const Strides& st, int i) {
   const Cell* x = b.cells.data() + static_cast<std::size_t>(i) * st.a;
@@ -106,8 +132,8 @@ bool mergeableLayers(const Block& b, const Strides& st, int i) {
   return true;
 }
 
-// Merges neighbouring layers that hold the same boxes and empty cells (their boundary is needed
-// by nothing inside this block).
+}  // namespace
+
 void simplify(Block& b) {
   for (bool changed = true; changed;) {
     changed = false;
@@ -144,6 +170,8 @@ void simplify(Block& b) {
   }
 }
 
+namespace {
+
 std::optional<Cell> uniformCell(const Block& b) {
   if (b.cells.empty()) return Cell::empty();
   const Cell& first = b.cells.front();
@@ -161,22 +189,14 @@ struct Run {
 // The repeat along axis a that removes the most cells: layers [start, start + period * count)
 // where layer i and layer i + period hold the same cells and have widths within the tolerance,
 // and the whole run is count periods long within the tolerance.
-std::optional<Run> findRun(const Block& b, int a, double tolerance) {
+std::optional<Run> findRun(const Block& b, const LayerSummary& summary, int a, double tolerance) {
   const int n = b.cellCount(a);
   const long long slice = static_cast<long long>(b.cellCount((a + 1) % 3)) * b.cellCount((a + 2) % 3);
   const auto& bounds = b.boundsM[static_cast<std::size_t>(a)];
   const auto width = [&](int i) { return bounds[static_cast<std::size_t>(i + 1)] - bounds[static_cast<std::size_t>(i)]; };
   // Equal layers, found once: cls[i] is the first layer equal to layer i (hashes first).
   const Strides st = stridesOf(b, a);
-  std::vector<std::uint64_t> hash(static_cast<std::size_t>(n), 1469598103934665603ull);
-  for (int i = 0; i < n; ++i)
-    for (int k = 0; k < st.nc; ++k)
-      for (int l = 0; l < st.nb; ++l) {
-        const Cell& c = b.cells[static_cast<std::size_t>(i) * st.a + static_cast<std::size_t>(k) * st.c + static_cast<std::size_t>(l) * st.b];
-        const std::uint64_t v = static_cast<std::uint64_t>(c.kind) | static_cast<std::uint64_t>(c.solid.index) << 8 |
-                                static_cast<std::uint64_t>(c.material) << 16 | static_cast<std::uint64_t>(c.redirection) << 32;
-        hash[static_cast<std::size_t>(i)] = (hash[static_cast<std::size_t>(i)] ^ v) * 1099511628211ull;
-      }
+  const std::vector<std::uint64_t>& hash = summary.hash[static_cast<std::size_t>(a)];
   std::vector<int> cls(static_cast<std::size_t>(n));
   for (int i = 0; i < n; ++i) {
     cls[static_cast<std::size_t>(i)] = i;
@@ -216,47 +236,60 @@ struct Cut {
   long long savedCells = 0;
 };
 
+// Which boundaries each layer needs, for every layer axis at once: need[a][o] holds, for layer i
+// of axis a and interior boundary j of its o-th other axis ((a + 1 + o) % 3), whether the cells on
+// the two sides of that boundary in that layer differ or are shaped by their cell (row i, column
+// j). One pass over the cells in memory order, each compared with its lower neighbour per axis:
+// walking layers across the array instead cost a cache miss per cell.
+using NeedTable = std::array<std::array<std::vector<std::uint8_t>, 2>, 3>;
+NeedTable neededBoundaries(const Block& b) {
+  const std::array<int, 3> n{b.cellCount(0), b.cellCount(1), b.cellCount(2)};
+  const auto columns = [&](int a, int o) { return static_cast<std::size_t>(std::max(n[static_cast<std::size_t>((a + 1 + o) % 3)] - 1, 0)); };
+  NeedTable need;
+  for (int a = 0; a < 3; ++a)
+    for (int o = 0; o < 2; ++o)
+      need[static_cast<std::size_t>(a)][static_cast<std::size_t>(o)].assign(static_cast<std::size_t>(n[static_cast<std::size_t>(a)]) * columns(a, o), 0);
+  const std::array<std::size_t, 3> step{1, static_cast<std::size_t>(n[0]), static_cast<std::size_t>(n[0]) * static_cast<std::size_t>(n[1])};
+  std::size_t index = 0;
+  for (int z = 0; z < n[2]; ++z)
+    for (int y = 0; y < n[1]; ++y)
+      for (int x = 0; x < n[0]; ++x, ++index) {
+        const std::array<int, 3> at{x, y, z};
+        for (int d = 0; d < 3; ++d) {
+          if (at[static_cast<std::size_t>(d)] == 0) continue;
+          const Cell& lower = b.cells[index - step[static_cast<std::size_t>(d)]];
+          if (lower == b.cells[index] && stretchable(lower)) continue;
+          for (int a = 0; a < 3; ++a) {
+            if (a == d) continue;
+            const int o = (a + 1) % 3 == d ? 0 : 1;
+            need[static_cast<std::size_t>(a)][static_cast<std::size_t>(o)]
+                [static_cast<std::size_t>(at[static_cast<std::size_t>(a)]) * columns(a, o) + static_cast<std::size_t>(at[static_cast<std::size_t>(d)] - 1)] = 1;
+          }
+        }
+      }
+  return need;
+}
+
 // The cut in two along any axis that leaves the fewest cells, counting for each half only the
 // boundaries of the other two axes that some layer of the half needs.
 std::optional<Cut> findCut(const Block& b) {
   std::optional<Cut> best;
   const long long total = static_cast<long long>(b.cells.size());
+  const NeedTable table = neededBoundaries(b);
   for (int a = 0; a < 3; ++a) {
     const int n = b.cellCount(a);
     if (n < 2) continue;
-    // need[o][i][j]: layer i needs boundary j of the o-th other axis (the cells on its two sides
-    // differ, or are shaped by their cell).
-    const Strides st = stridesOf(b, a);
-    std::array<std::vector<std::vector<bool>>, 2> need;
-    for (int o = 0; o < 2; ++o) {
-      const std::size_t stepO = o == 0 ? st.b : st.c, stepP = o == 0 ? st.c : st.b;
-      const int nO = o == 0 ? st.nb : st.nc, nP = o == 0 ? st.nc : st.nb;
-      need[static_cast<std::size_t>(o)].assign(static_cast<std::size_t>(n), std::vector<bool>(static_cast<std::size_t>(std::max(nO - 1, 0)), false));
-      for (int i = 0; i < n; ++i) {
-        const Cell* layer = b.cells.data() + static_cast<std::size_t>(i) * st.a;
-        for (int j = 1; j < nO; ++j) {
-          const Cell* x = layer + static_cast<std::size_t>(j - 1) * stepO;
-          const Cell* y = x + stepO;
-          for (int k = 0; k < nP; ++k) {
-            const std::size_t off = static_cast<std::size_t>(k) * stepP;
-            if (!(x[off] == y[off]) || !stretchable(x[off])) {
-              need[static_cast<std::size_t>(o)][static_cast<std::size_t>(i)][static_cast<std::size_t>(j - 1)] = true;
-              break;
-            }
-          }
-        }
-      }
-    }
+    const auto& need = table[static_cast<std::size_t>(a)];
     // Needed boundaries of the halves [0, c) and [c, n), per other axis.
     std::array<std::vector<int>, 2> left, right;
     for (int o = 0; o < 2; ++o) {
-      const std::size_t m = need[static_cast<std::size_t>(o)][0].size();
+      const std::size_t m = need[static_cast<std::size_t>(o)].size() / static_cast<std::size_t>(n);
       std::vector<bool> acc(m, false);
       left[static_cast<std::size_t>(o)].assign(static_cast<std::size_t>(n + 1), 0);
       int count = 0;
       for (int i = 0; i < n; ++i) {
         for (std::size_t j = 0; j < m; ++j)
-          if (need[static_cast<std::size_t>(o)][static_cast<std::size_t>(i)][j] && !acc[j]) {
+          if (need[static_cast<std::size_t>(o)][static_cast<std::size_t>(i) * m + j] && !acc[j]) {
             acc[j] = true;
             ++count;
           }
@@ -267,7 +300,7 @@ std::optional<Cut> findCut(const Block& b) {
       count = 0;
       for (int i = n - 1; i >= 0; --i) {
         for (std::size_t j = 0; j < m; ++j)
-          if (need[static_cast<std::size_t>(o)][static_cast<std::size_t>(i)][j] && !acc[j]) {
+          if (need[static_cast<std::size_t>(o)][static_cast<std::size_t>(i) * m + j] && !acc[j]) {
             acc[j] = true;
             ++count;
           }
@@ -295,8 +328,9 @@ class Decomposer {
     if (depth >= kMaxDepth || b.cells.size() <= static_cast<std::size_t>(options_.minSavedCells)) return emit(std::move(b));
 
     std::optional<Run> run;
+    const LayerSummary summary = summarizeLayers(b);
     for (int a = 0; a < 3; ++a)
-      if (auto r = findRun(b, a, options_.toleranceM); r && (!run || r->savedCells > run->savedCells)) run = r;
+      if (auto r = findRun(b, summary, a, options_.toleranceM); r && (!run || r->savedCells > run->savedCells)) run = r;
     const std::optional<Cut> cut = options_.cuts ? findCut(b) : std::nullopt;
     const long long runSaved = run ? run->savedCells : 0, cutSaved = cut ? cut->savedCells : 0;
     if (std::max(runSaved, cutSaved) < options_.minSavedCells) return emit(std::move(b));

@@ -1,7 +1,8 @@
 // converter/mesh/src/solid_builder.hpp — what the steps of solid conversion share (solid.hpp
 // describes the steps): the per-face and per-slope records, the grid helpers, and Builder, which
 // holds the state; solid_grid.cpp (planes, slopes, boundaries, the driver), solid_occupancy.cpp
-// (occupancy, wedges, trimming) and solid_materials.cpp (materials, complementary mesh) implement it.
+// (occupancy, wedges, trimming), quadrics.cpp (quarter cylinders) and solid_materials.cpp
+// (materials, complementary mesh) implement it.
 #pragma once
 
 #include <array>
@@ -51,14 +52,14 @@ constexpr double kInnerFaceWeight = 0.01;
 // Rounds of slope closure.
 constexpr int kSlopeRounds = 6;
 
-enum class FaceKind : std::uint8_t { Aligned, Slope, General };
+enum class FaceKind : std::uint8_t { Aligned, Slope, Quadric, General };
 
 struct Face {
   dvec3 areaVector{0.0};  // half the cross product: area times unit normal
   double area = 0;
   FaceKind kind = FaceKind::General;
-  int axis = 0;           // Aligned: the normal's axis; Slope: the extrusion axis
-  int group = -1;         // Aligned: cluster (later boundary) index; Slope: plane index
+  int axis = 0;           // Aligned: the normal's axis; Slope, Quadric: the extrusion axis
+  int group = -1;         // Aligned: cluster (later boundary) index; Slope: plane index; Quadric: piece
 };
 
 struct SlopePlane {
@@ -81,6 +82,22 @@ struct SlopePlane {
   double uMax() const { return std::max(point(s0).x, point(s1).x); }
   double vMin() const { return std::min(point(s0).y, point(s1).y); }
   double vMax() const { return std::max(point(s0).y, point(s1).y); }
+};
+
+// A quarter-round piece (quadrics.cpp): faces on a quarter of an elliptic cylinder whose axis
+// is parallel to axis e, from one axis-aligned tangent direction to the next. Boundaries at the
+// axis and at both tangent lines make the arc fill the cross-section of one cell, which becomes a
+// QuarterCylinder (solid on the axis side, a round corner) or an InverseQuarterCylinder (a cove).
+struct QuadricPiece {
+  int e = 0;                      // axis; (u, v) = (kU[e], kV[e])
+  dvec2 centre{0.0};              // the axis in (u, v)
+  dvec2 radius{0.0};              // along u and v
+  std::array<int, 2> quadrant{};  // direction (+1 or -1) from the axis to the arc along u and v
+  double e0 = 0, e1 = 0;          // extent along e
+  double area = 0;
+  std::uint16_t material = 0;
+  std::vector<std::uint32_t> faces;
+  bool represented = true;        // false once its cells could not show it
 };
 
 // Boundary helpers (solid_grid.cpp). Boundaries are sorted positions, metres from the origin.
@@ -135,6 +152,7 @@ struct Builder {
   std::vector<Face> faces;
   std::array<std::vector<double>, 3> clusterMeans;  // per axis
   std::vector<SlopePlane> slopes;
+  std::vector<QuadricPiece> quadrics;
   std::array<std::vector<double>, 3> bounds;
   std::array<int, 3> n{};
   std::vector<std::int8_t> shape;        // per cell: -1 empty, else solid index (0 box, 1..12 wedge)
@@ -151,19 +169,22 @@ struct Builder {
 
   void analyseFaces();
   void findSlopes();
+  void findQuadrics();
   void buildBounds();
+  void addQuadricBounds();
   void closeSlopes();
   void classify(const LazyWinding& winding);
   bool fitWedges(const LazyWinding& winding);
+  bool fitQuadrics(const LazyWinding& winding);
   void trimCutCells(const LazyWinding& winding);
   bool shownByMesh(std::uint32_t face) const;
   struct Share {
     std::size_t cell;
     std::uint16_t material;
-    std::uint8_t side;  // 2 * axis + (1 on the + side); 6 for a wedge's slope
+    std::uint8_t side;  // 2 * axis + (1 on the + side); 6 for a wedge's slope or a curved face
     double area;
   };
-  std::vector<Share> wedgeShares;  // filled by fitWedges
+  std::vector<Share> wedgeShares;  // filled by fitWedges and fitQuadrics
   std::vector<Share> computeShares(Mesh& complement, SolidStats& area);
   bool onFailedCell(std::uint32_t face) const;
   std::array<std::vector<double>, 3> materialConflicts(const std::vector<Share>& shares, double& conflictArea) const;

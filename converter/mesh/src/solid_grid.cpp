@@ -334,15 +334,18 @@ Result<SolidGrid> buildSolidGrid(const Mesh& mesh, const SolidOptions& options) 
     return s;
   };
   builder.analyseFaces();
+  builder.findQuadrics();  // before slopes: a quarter cylinder's faces are sloped too
   builder.findSlopes();
   const LazyWinding winding(mesh);
   // The grid is built again (at most kAttempts times in all) when a slope did not come out as
-  // wedges (its boundaries were added for nothing) or cells show faces of different materials
+  // wedges or a quarter-round piece as quadric cells (its boundaries were added for nothing) or
+  // cells show faces of different materials
   // (materialConflicts adds the boundaries that separate them).
   SolidGrid out;
   std::vector<Builder::Share> shares;
   for (int attempt = 0; attempt < kAttempts; ++attempt) {
     builder.buildBounds();
+    builder.addQuadricBounds();
     builder.closeSlopes();
     std::size_t cells = 1;
     for (int a = 0; a < 3; ++a) {
@@ -363,6 +366,7 @@ Result<SolidGrid> buildSolidGrid(const Mesh& mesh, const SolidOptions& options) 
     builder.stats.trimmedCells = 0;
     builder.stats.slopeBoundaries = 0;
     bool again = !builder.fitWedges(winding);
+    again = !builder.fitQuadrics(winding) || again;
     builder.trimCutCells(winding);
     builder.stats.wedgesSeconds += lap();
     out.complement = Mesh{};

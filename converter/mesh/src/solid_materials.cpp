@@ -38,8 +38,9 @@ double polygonArea(const Polygon2& poly) {
 
 // Clips every axis-aligned face against the cell faces it covers (step 4 of solid.hpp). Where
 // exactly one side is solid, that cell gets a share of the face's area for the face's material
-// on that side; wedges add their slope (fitWedges). With `complement`, the pieces that are empty on
-// both sides go there and the surface statistics are counted.
+// on that side; wedges add their slope (fitWedges), quadric cells their curved face
+// (fitQuadrics). With `complement`, the pieces that are empty on both sides go there and the
+// surface statistics are counted.
 std::vector<Builder::Share> Builder::computeShares(Mesh& complementOut, SolidStats& area) {
   // Faces are handled in chunks on all threads, each chunk into its own lists, which are then
   // joined in chunk order so that the result does not depend on the thread count.
@@ -69,7 +70,7 @@ std::vector<Builder::Share> Builder::computeShares(Mesh& complementOut, SolidSta
         out.complementArea += face.area;
         continue;
       }
-      if (face.kind == FaceKind::Slope) {
+      if (face.kind == FaceKind::Slope || face.kind == FaceKind::Quadric) {
         out.nut += face.area;
         continue;
       }
@@ -246,7 +247,9 @@ void Builder::assignMaterials(Block& block, const std::vector<Share>& shares) {
     if (shape[id] < 0) continue;
     block.cells[id] = Cell::solidCell(Solid{static_cast<std::uint8_t>(shape[id])}, chosen[id]);
     ++stats.solidCells;
-    stats.wedgeCells += shape[id] > 0;
+    const SolidGroup group = solidGroup(Solid{static_cast<std::uint8_t>(shape[id])});
+    stats.wedgeCells += group == SolidGroup::Wedge;
+    stats.quadricCells += group == SolidGroup::QuarterCylinder || group == SolidGroup::InverseQuarterCylinder;
   }
 }
 

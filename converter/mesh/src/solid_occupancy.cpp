@@ -277,11 +277,12 @@ bool Builder::fitWedges(const LazyWinding& winding) {
 }
 
 // Whether the complementary mesh shows face f whole: it is neither axis-aligned nor part of a
-// slope shown by wedges at its place.
+// slope shown by wedges at its place nor of a piece shown by quadric cells.
 bool Builder::shownByMesh(std::uint32_t f) const {
   const Face& face = faces[f];
   if (face.kind == FaceKind::General) return true;
   if (face.kind == FaceKind::Aligned) return false;
+  if (face.kind == FaceKind::Quadric) return !quadrics[static_cast<std::size_t>(face.group)].represented;
   return !slopes[static_cast<std::size_t>(face.group)].represented || onFailedCell(f);
 }
 

@@ -51,6 +51,11 @@ struct BlockStats {
   long long bytesBefore = 0, bytesAfter = 0;   // estimated by the cost model
 };
 
+// Merges neighbouring layers that hold the same boxes and empty cells: their boundary is needed
+// by nothing inside this block. buildHierarchy does it to every block; a caller building several
+// hierarchies from one grid can do it once first.
+void simplify(Block& b);
+
 // Estimated bytes of a block in an HNI (the cost model above).
 long long estimatedBytes(const Block& b);
 

@@ -1,5 +1,5 @@
 // converter/solid.hpp — solid conversion (paper section 5, first step): a triangle mesh becomes
-// one non-uniform grid G0 of empty, box and wedge cells, plus the complementary mesh of the faces
+// one non-uniform grid G0 of empty, box, wedge and quarter-cylinder cells, plus the complementary mesh of the faces
 // the grid cannot show.
 //
 // 1. Planes. A face whose normal is within `angleToleranceDeg` of an axis is axis-aligned. Per
@@ -10,7 +10,9 @@
 // 2. Grid. The clusters and the mesh's bounding box give each axis's boundaries, snapped to the
 //    encoding's millimetres. A face sloped along one axis only (a roof pitch, a ramp) adds its end
 //    lines, and boundaries where it crosses other boundaries, so that it runs through cells from
-//    corner to corner: those cells become wedges.
+//    corner to corner: those cells become wedges. Faces on a quarter of a cylinder whose axis is
+//    parallel to an axis (a round corner, a cove) add the axis and the two tangent lines, so that
+//    the quarter arc fills the cross-section of one cell: those cells become quarter cylinders.
 // 3. Occupancy. Lines through the cell centres along one axis are intersected with the faces.
 //    Where a line meets a closed surface (entries and exits balance, merged where the line passes
 //    through a shared edge or vertex), the running count of entries minus exits is the winding
@@ -43,6 +45,7 @@ struct SolidOptions {
   double toleranceM = 0.01;         // plane clustering and wedge fitting
   double angleToleranceDeg = 1.0;   // how far a normal may be from an axis and still count as on it
   bool wedges = true;               // fit wedge cells to faces sloped along one axis
+  bool quadrics = true;             // fit quarter-cylinder cells to quarter-round pieces
   // Keep a slope whose cells mostly became wedges, leaving its faces over the other cells to the
   // complementary mesh; false: only slopes that became wedges everywhere stay (a smaller grid).
   bool partialWedges = true;
@@ -62,6 +65,9 @@ struct SolidStats {
   double conflictAreaM2 = 0;          // faces shown in another material than their own (last build)
   long long solidCells = 0;
   long long wedgeCells = 0;
+  int quadrics = 0;                   // quarter-round pieces found (quarter cylinders)
+  int quadricsAsCells = 0;            // of those, shown by quadric cells
+  long long quadricCells = 0;         // quarter-cylinder and inverse quarter-cylinder cells
   long long trimmedCells = 0;         // cut by the complementary mesh and not inside all over: empty
   long long columns = 0;              // lines of cells along the sweep axis
   long long windingColumns = 0;       // of those, not closed along the line: decided by winding numbers
@@ -69,7 +75,7 @@ struct SolidStats {
   long long ambiguousCells = 0;       // needed the extra samples
   int sweepAxis = 0;
   double areaM2 = 0;                  // whole mesh
-  double nutAreaM2 = 0;               // shown by grid cells (axis-aligned faces and wedges)
+  double nutAreaM2 = 0;               // shown by grid cells (axis-aligned faces, wedges, quadrics)
   double complementAreaM2 = 0;        // left to the complementary mesh
   double hiddenAreaM2 = 0;            // between two solid cells: inner faces nobody sees
   // Seconds per step: planes and grid, occupancy, wedges, materials; the winding-number tree is
