@@ -1,0 +1,96 @@
+// Axis orders (converter/axis_order.hpp): a grid turned into another axis order, under a root that
+// turns it back, must hold at every point what the grid held, solids included. The check looks
+// points up through the redirection as docs/FORMAT.md defines it and tests solid containment in
+// each cell's unit cube, so a wrong solid orientation, a wrong mirror or a wrong offset shows.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <random>
+#include <set>
+
+#include <glm/matrix.hpp>
+
+#include <converter/axis_order.hpp>
+#include <nut/format.hpp>
+#include <nut/hierarchy.hpp>
+
+namespace nut::converter {
+namespace {
+
+// What point p (block-local metres) of block `id` holds: the material of the solid it is inside,
+// or -1.
+int contentAt(const Hierarchy& h, BlockId id, const glm::dvec3& p) {
+  const Block& b = h.blocks[id];
+  std::array<int, 3> c{};
+  glm::dvec3 unit;
+  for (int a = 0; a < 3; ++a) {
+    const auto& bounds = b.boundsM[static_cast<std::size_t>(a)];
+    if (p[a] < 0 || p[a] >= bounds.back()) return -1;
+    c[static_cast<std::size_t>(a)] = static_cast<int>(std::upper_bound(bounds.begin(), bounds.end(), p[a]) - bounds.begin()) - 1;
+    const double lo = bounds[static_cast<std::size_t>(c[static_cast<std::size_t>(a)])];
+    unit[a] = (p[a] - lo) / (bounds[static_cast<std::size_t>(c[static_cast<std::size_t>(a)] + 1)] - lo);
+  }
+  const Cell& cell = b.cell(c[0], c[1], c[2]);
+  if (cell.kind == CellKind::Solid) return solidContains(cell.solid, unit) ? cell.material : -1;
+  if (cell.kind == CellKind::Empty) return -1;
+  const Redirection& r = b.redirections[cell.redirection];
+  glm::dvec3 local;
+  for (int a = 0; a < 3; ++a) local[a] = p[a] - b.boundsM[static_cast<std::size_t>(a)][static_cast<std::size_t>(c[static_cast<std::size_t>(a)])];
+  return contentAt(h, r.target, glm::transpose(rotationMatrix(r.rotation)) * (local - r.offsetM));
+}
+
+// Cells of uneven millimetre widths holding every kind of solid in random orientations.
+Block randomGrid(std::uint32_t seed) {
+  std::mt19937 rng(seed);
+  std::array<std::vector<double>, 3> sizes;
+  const std::array<int, 3> n{7, 5, 6};
+  for (std::size_t a = 0; a < 3; ++a)
+    for (int i = 0; i < n[a]; ++i) sizes[a].push_back(0.1 + 0.001 * static_cast<double>(rng() % 2000));
+  Block b = Block::fromSizes(sizes);
+  for (Cell& c : b.cells)
+    if (rng() % 4 != 0) c = Cell::solidCell(Solid{static_cast<std::uint8_t>(rng() % kSolidCount)}, static_cast<std::uint16_t>(rng() % 5));
+  return b;
+}
+
+TEST(AxisOrder, TurnedGridUnderItsRootHoldsWhatTheGridHeld) {
+  const Block grid = randomGrid(7);
+  Hierarchy reference;
+  reference.addBlock(grid);
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  for (int cube = 0; cube < format::kCubeRotationCount; ++cube) {
+    const TurnedBlock turned = turnBlock(grid, cube);
+    Hierarchy h;
+    h.addBlock(turned.block);
+    wrapRoot(h, grid.sizeM(), cube, turned.offsetM);
+    int mismatches = 0, solid = 0;
+    for (int i = 0; i < 20000; ++i) {
+      const glm::dvec3 p = glm::dvec3(unit(rng), unit(rng), unit(rng)) * grid.sizeM();
+      const int expected = contentAt(reference, 0, p);
+      mismatches += contentAt(h, h.root, p) != expected;
+      solid += expected >= 0;
+    }
+    EXPECT_EQ(mismatches, 0) << "rotation " << cube;
+    EXPECT_GT(solid, 5000);  // the points do test solids
+  }
+}
+
+// One rotation per order of the axes, the identity first.
+TEST(AxisOrder, OneRotationPerOrderOfTheAxes) {
+  const std::vector<int> rotations = axisOrderRotations();
+  ASSERT_EQ(rotations.size(), 6u);
+  EXPECT_EQ(rotations.front(), 0);
+  std::set<std::array<int, 3>> orders;
+  for (int r : rotations) {
+    const auto m = cubeRotationMatrix(r);
+    std::array<int, 3> order{};
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j)
+        if (m[i][j] != 0) order[static_cast<std::size_t>(i)] = j;
+    orders.insert(order);
+  }
+  EXPECT_EQ(orders.size(), 6u);
+}
+
+}  // namespace
+}  // namespace nut::converter
