@@ -14,6 +14,8 @@
 
 #include <glm/geometric.hpp>
 
+#include "union_find.hpp"
+
 namespace nut::converter {
 
 namespace {
@@ -60,16 +62,6 @@ Welded weld(const Mesh& mesh) {
   for (const auto& t : mesh.triangles) w.triangles.push_back({idOf[t[0]], idOf[t[1]], idOf[t[2]]});
   return w;
 }
-
-struct UnionFind {
-  std::vector<std::uint32_t> parent;
-  explicit UnionFind(std::size_t n) : parent(n) { std::iota(parent.begin(), parent.end(), 0u); }
-  std::uint32_t find(std::uint32_t x) {
-    while (parent[x] != x) x = parent[x] = parent[parent[x]];
-    return x;
-  }
-  void unite(std::uint32_t a, std::uint32_t b) { parent[find(a)] = find(b); }
-};
 
 // Whether b is a cyclic rotation of a (same orientation) or of a reversed (flipped).
 enum class Turn { Same, Flipped, Other };

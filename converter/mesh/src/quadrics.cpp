@@ -13,6 +13,7 @@
 #include <glm/geometric.hpp>
 
 #include "solid_builder.hpp"
+#include "union_find.hpp"
 
 namespace nut::converter::solid {
 
@@ -31,16 +32,6 @@ constexpr double kMinCoverage = 0.95, kMaxCoverage = 1.02;
 // Sample points of a quadric cell, as a share of the cell's size from the axis edge along u and
 // v: one well inside the quarter disk (radius 0.49) and one well outside it (radius 1.2).
 constexpr double kInnerSample = 0.35, kOuterSample = 0.85;
-
-struct UnionFind {
-  std::vector<std::uint32_t> parent;
-  explicit UnionFind(std::size_t n) : parent(n) { std::iota(parent.begin(), parent.end(), 0u); }
-  std::uint32_t find(std::uint32_t x) {
-    while (parent[x] != x) x = parent[x] = parent[parent[x]];
-    return x;
-  }
-  void join(std::uint32_t a, std::uint32_t b) { parent[find(a)] = find(b); }
-};
 
 }  // namespace
 
@@ -75,7 +66,7 @@ void Builder::findQuadrics() {
       const std::uint64_t id = static_cast<std::uint64_t>(weld[mesh.triangles[f][static_cast<std::size_t>(k)]]) * 12 +
                                static_cast<std::uint64_t>(keyOf(f));
       const auto [it, fresh] = owner.emplace(id, f);
-      if (!fresh) sets.join(f, it->second);
+      if (!fresh) sets.unite(f, it->second);
     }
   }
   std::unordered_map<std::uint32_t, std::vector<std::uint32_t>> groups;
