@@ -1,10 +1,11 @@
 // Axis orders (converter/axis_order.hpp): a grid turned into another axis order, under a root that
-// turns it back, must hold at every point what the grid held, solids included. The check looks
+// turns it back, must hold at every point what the grid held, solids and redirections included. The check looks
 // points up through the redirection as docs/FORMAT.md defines it and tests solid containment in
 // each cell's unit cube, so a wrong solid orientation, a wrong mirror or a wrong offset shows.
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <random>
 #include <set>
 
@@ -36,10 +37,16 @@ int contentAt(const Hierarchy& h, BlockId id, const glm::dvec3& p) {
   const Redirection& r = b.redirections[cell.redirection];
   glm::dvec3 local;
   for (int a = 0; a < 3; ++a) local[a] = p[a] - b.boundsM[static_cast<std::size_t>(a)][static_cast<std::size_t>(c[static_cast<std::size_t>(a)])];
-  return contentAt(h, r.target, glm::transpose(rotationMatrix(r.rotation)) * (local - r.offsetM));
+  glm::dvec3 q = glm::transpose(rotationMatrix(r.rotation)) * (local - r.offsetM);
+  const glm::dvec3 size = h.blocks[r.target].sizeM();
+  for (int a = 0; a < 3; ++a)
+    if (r.wrap[static_cast<std::size_t>(a)]) q[a] -= std::floor(q[a] / size[a]) * size[a];
+  return contentAt(h, r.target, q);
 }
 
-// Cells of uneven millimetre widths holding every kind of solid in random orientations.
+// Cells of uneven millimetre widths holding every kind of solid in random orientations, and cells
+// redirecting to block 0 (a small target of solids) turned by random cube rotations, shifted,
+// some tiled.
 Block randomGrid(std::uint32_t seed) {
   std::mt19937 rng(seed);
   std::array<std::vector<double>, 3> sizes;
@@ -47,26 +54,44 @@ Block randomGrid(std::uint32_t seed) {
   for (std::size_t a = 0; a < 3; ++a)
     for (int i = 0; i < n[a]; ++i) sizes[a].push_back(0.1 + 0.001 * static_cast<double>(rng() % 2000));
   Block b = Block::fromSizes(sizes);
-  for (Cell& c : b.cells)
-    if (rng() % 4 != 0) c = Cell::solidCell(Solid{static_cast<std::uint8_t>(rng() % kSolidCount)}, static_cast<std::uint16_t>(rng() % 5));
+  for (Cell& c : b.cells) {
+    if (rng() % 5 == 0) {
+      c = Cell::redirect(static_cast<std::uint32_t>(b.redirections.size()));
+      const glm::dvec3 offset(0.001 * static_cast<double>(rng() % 200), 0.001 * static_cast<double>(rng() % 200), -0.001 * static_cast<double>(rng() % 200));
+      b.redirections.push_back(Redirection{0, offset, Rotation{static_cast<std::uint8_t>(rng() % format::kCubeRotationCount), 0},
+                                           {rng() % 2 == 0, false, rng() % 2 == 0}});
+    } else if (rng() % 4 != 0) {
+      c = Cell::solidCell(Solid{static_cast<std::uint8_t>(rng() % kSolidCount)}, static_cast<std::uint16_t>(rng() % 5));
+    }
+  }
   return b;
+}
+
+// The redirection target: 3 x 2 x 2 cells of solids.
+Block targetBlock() {
+  Block t = Block::fromSizes({{{0.05, 0.11, 0.07}, {0.09, 0.06}, {0.08, 0.1}}});
+  for (std::size_t i = 0; i < t.cells.size(); ++i)
+    if (i % 3 != 1) t.cells[i] = Cell::solidCell(Solid{static_cast<std::uint8_t>((7 * i) % kSolidCount)}, static_cast<std::uint16_t>(i % 5));
+  return t;
 }
 
 TEST(AxisOrder, TurnedGridUnderItsRootHoldsWhatTheGridHeld) {
   const Block grid = randomGrid(7);
   Hierarchy reference;
-  reference.addBlock(grid);
+  reference.addBlock(targetBlock());
+  const BlockId gridId = reference.addBlock(grid);
   std::mt19937 rng(11);
   std::uniform_real_distribution<double> unit(0.0, 1.0);
   for (int cube = 0; cube < format::kCubeRotationCount; ++cube) {
     const TurnedBlock turned = turnBlock(grid, cube);
     Hierarchy h;
-    h.addBlock(turned.block);
+    h.addBlock(targetBlock());
+    h.root = h.addBlock(turned.block);
     wrapRoot(h, grid.sizeM(), cube, turned.offsetM);
     int mismatches = 0, solid = 0;
     for (int i = 0; i < 20000; ++i) {
       const glm::dvec3 p = glm::dvec3(unit(rng), unit(rng), unit(rng)) * grid.sizeM();
-      const int expected = contentAt(reference, 0, p);
+      const int expected = contentAt(reference, gridId, p);
       mismatches += contentAt(h, h.root, p) != expected;
       solid += expected >= 0;
     }

@@ -3,7 +3,9 @@
 // QuarterCylinder cells, over 99 % of its surface as NUT, no corner face in the complementary mesh,
 // and renders like its source (at least 99 % of the pixels of every view within 8/255; diff images
 // in the test output folder, converter_quadric/, when not). Corners that are no quarter cylinder (a
-// radius shrinking with height, a wavy arc) stay in the complementary mesh.
+// radius shrinking with height, a wavy arc) stay in the complementary mesh. Corners whose
+// cross-section window recesses cut (the grid is global) become sub-blocks of their own, and so
+// do the house sample's round corners and drum.
 #include <gtest/gtest.h>
 
 #include <array>
@@ -83,6 +85,66 @@ Mesh roundedBox(const std::array<Radius, 4>& corners) {
 
 const Radius kRound = [](double, double) { return 1.0; };
 
+// Two triangles for the quad p0 p1 p2 p3 (a convex loop), turned to face along `normal`.
+void addQuad(Mesh& mesh, const std::array<glm::dvec3, 4>& p, const glm::dvec3& normal) {
+  const bool flip = glm::dot(glm::cross(p[1] - p[0], p[2] - p[0]), normal) < 0;
+  const auto base = static_cast<std::uint32_t>(mesh.positions.size());
+  mesh.positions.insert(mesh.positions.end(), p.begin(), p.end());
+  for (const std::array<std::uint32_t, 3> t : {std::array<std::uint32_t, 3>{0, 1, 2}, std::array<std::uint32_t, 3>{0, 2, 3}}) {
+    mesh.triangles.push_back(flip ? std::array<std::uint32_t, 3>{base + t[0], base + t[2], base + t[1]}
+                                  : std::array<std::uint32_t, 3>{base + t[0], base + t[1], base + t[2]});
+    mesh.triangleMaterial.push_back(0);
+  }
+}
+
+// The rounded box with a window recess (1.5 to 3.5 m high, 2 m wide, in the middle) in each
+// straight wall, 0.3, 0.2, 0.25 and 0.14 m deep in the +z, -z, +x and -x walls: each recess's back
+// is a boundary that runs through the two corners beside it, so no corner is one cell across.
+Mesh roundedBoxWithRecesses() {
+  Mesh mesh = roundedBox({kRound, kRound, kRound, kRound});
+  // The walls' own quads (every corner lies on the wall's plane) give way to walls with a hole.
+  std::vector<std::array<std::uint32_t, 3>> kept;
+  const auto onWall = [&](const glm::dvec3& q) { return q.x == 0 || q.x == W || q.z == 0 || q.z == D; };
+  for (const auto& t : mesh.triangles) {
+    const glm::dvec3 a = mesh.positions[t[0]], b = mesh.positions[t[1]], c = mesh.positions[t[2]];
+    const bool wall = onWall(a) && onWall(b) && onWall(c) && ((a.x == b.x && b.x == c.x) || (a.z == b.z && b.z == c.z));
+    if (!wall) kept.push_back(t);
+  }
+  mesh.triangles = kept;
+  mesh.triangleMaterial.assign(kept.size(), 0);
+  struct Wall {
+    int a;          // normal axis (0 x, 2 z)
+    double at, out; // plane and outward sign
+    double depth;
+  };
+  const double y0 = 1.5, y1 = 3.5;
+  for (const Wall& w : {Wall{2, D, 1, 0.3}, Wall{2, 0, -1, 0.2}, Wall{0, W, 1, 0.25}, Wall{0, 0, -1, 0.14}}) {
+    const int t = 2 - w.a;  // along the wall
+    const double length = t == 0 ? W : D, t0 = 1, t1 = length - 1, h0 = length / 2 - 1, h1 = length / 2 + 1;
+    const auto at = [&](double along, double y, double inset) {
+      glm::dvec3 q(0.0);
+      q[t] = along;
+      q.y = y;
+      q[w.a] = w.at - w.out * inset;
+      return q;
+    };
+    glm::dvec3 normal(0.0), alongT(0.0);
+    normal[w.a] = w.out;
+    alongT[t] = 1;
+    addQuad(mesh, {at(t0, 0, 0), at(h0, 0, 0), at(h0, H, 0), at(t0, H, 0)}, normal);
+    addQuad(mesh, {at(h1, 0, 0), at(t1, 0, 0), at(t1, H, 0), at(h1, H, 0)}, normal);
+    addQuad(mesh, {at(h0, 0, 0), at(h1, 0, 0), at(h1, y0, 0), at(h0, y0, 0)}, normal);
+    addQuad(mesh, {at(h0, y1, 0), at(h1, y1, 0), at(h1, H, 0), at(h0, H, 0)}, normal);
+    addQuad(mesh, {at(h0, y0, w.depth), at(h1, y0, w.depth), at(h1, y1, w.depth), at(h0, y1, w.depth)}, normal);
+    addQuad(mesh, {at(h0, y0, 0), at(h0, y1, 0), at(h0, y1, w.depth), at(h0, y0, w.depth)}, alongT);
+    addQuad(mesh, {at(h1, y0, 0), at(h1, y1, 0), at(h1, y1, w.depth), at(h1, y0, w.depth)}, -alongT);
+    addQuad(mesh, {at(h0, y0, 0), at(h1, y0, 0), at(h1, y0, w.depth), at(h0, y0, w.depth)}, glm::dvec3(0, 1, 0));
+    addQuad(mesh, {at(h0, y1, 0), at(h1, y1, 0), at(h1, y1, w.depth), at(h0, y1, w.depth)}, glm::dvec3(0, -1, 0));
+  }
+  mesh.name = "recessed";
+  return mesh;
+}
+
 Conversion convert(const Mesh& mesh) {
   auto c = convertMesh(mesh);
   EXPECT_TRUE(c.ok()) << c.error().message;
@@ -111,14 +173,15 @@ int curvedComplementFaces(const Conversion& c) {
   return count;
 }
 
-void expectRoundCorners(const std::array<Radius, 4>& corners, int expected, const std::string& stem) {
-  const Mesh mesh = roundedBox(corners);
+void expectRoundCorners(const Mesh& mesh, int expected, int subBlocks, const std::string& stem) {
   const Conversion c = convert(mesh);
   const SolidStats& s = c.report.solid;
-  std::printf("%s: %d quarter-round pieces, %d as cells, %lld quadric cells, NUT %.2f %%, complement %zu triangles\n",
-              stem.c_str(), s.quadrics, s.quadricsAsCells, s.quadricCells, 100 * nutFraction(c), c.complement.triangles.size());
+  std::printf("%s: %d quarter-round pieces, %d as cells (%d as sub-blocks), %lld quadric cells, NUT %.2f %%, complement %zu triangles\n",
+              stem.c_str(), s.quadrics, s.quadricsAsCells, s.quadricsAsSubBlocks, s.quadricCells, 100 * nutFraction(c),
+              c.complement.triangles.size());
   EXPECT_EQ(s.quadrics, expected);
   EXPECT_EQ(s.quadricsAsCells, expected);
+  EXPECT_EQ(s.quadricsAsSubBlocks, subBlocks);
   EXPECT_GE(s.quadricCells, expected);
   EXPECT_GE(cellsOf(c, SolidGroup::QuarterCylinder), expected);
   EXPECT_EQ(cellsOf(c, SolidGroup::InverseQuarterCylinder), 0);
@@ -132,11 +195,33 @@ void expectRoundCorners(const std::array<Radius, 4>& corners, int expected, cons
 }
 
 TEST(QuarterCylinders, OneRoundCornerBecomesQuarterCylinderCells) {
-  expectRoundCorners({kRound, nullptr, nullptr, nullptr}, 1, "one_corner");
+  expectRoundCorners(roundedBox({kRound, nullptr, nullptr, nullptr}), 1, 0, "one_corner");
 }
 
 TEST(QuarterCylinders, FourRoundCornersBecomeQuarterCylinderCells) {
-  expectRoundCorners({kRound, kRound, kRound, kRound}, 4, "four_corners");
+  expectRoundCorners(roundedBox({kRound, kRound, kRound, kRound}), 4, 0, "four_corners");
+}
+
+// Before sub-blocks these corners went to the complementary mesh whole.
+TEST(QuarterCylinders, CornersCutByRecessesBecomeSubBlocks) {
+  expectRoundCorners(roundedBoxWithRecesses(), 4, 4, "recessed_corners");
+}
+
+// The house sample: four round corners (radius 1.5 m) that window recesses cut and a drum that
+// window boundaries cross, all shown by sub-blocks; only the dome (and what is not a quarter
+// cylinder) stays in the complementary mesh. Fidelity: converter_fidelity_test.
+TEST(QuarterCylinders, HouseCornersAndDrumBecomeSubBlocks) {
+  auto obj = readObj(std::string(NUT_SOURCE_DIR) + "/samples/obj/house.obj");
+  ASSERT_TRUE(obj.ok()) << obj.error().message;
+  const Conversion c = convert(mergeObjects(obj->objects, "house"));
+  const SolidStats& s = c.report.solid;
+  std::printf("house: %d quarter-round pieces, %d as sub-blocks, NUT %.2f %% (+ %.2f %% hidden), complement %.2f %%, %zu triangles\n",
+              s.quadrics, s.quadricsAsSubBlocks, 100 * nutFraction(c), 100 * s.hiddenAreaM2 / s.areaM2,
+              100 * s.complementAreaM2 / s.areaM2, c.complement.triangles.size());
+  EXPECT_EQ(s.quadrics, 8);
+  EXPECT_EQ(s.quadricsAsSubBlocks, 8);
+  EXPECT_LT(s.complementAreaM2, 0.05 * s.areaM2);  // 16 % before
+  EXPECT_LT(c.complement.triangles.size(), 1840u - 4 * 2 * 16);  // the corners' sides at least
 }
 
 // A corner whose radius shrinks from 1 m at the ground to 0.6 m at the top (a quarter cone, its

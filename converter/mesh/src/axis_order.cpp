@@ -5,6 +5,7 @@
 #include <array>
 #include <cstdlib>
 #include <map>
+#include <tuple>
 #include <utility>
 
 #include <glm/mat3x3.hpp>
@@ -15,6 +16,12 @@
 namespace nut::converter {
 
 namespace {
+
+int rotationIndex(const glm::mat<3, 3, int>& m) {
+  for (int r = 0; r < format::kCubeRotationCount; ++r)
+    if (cubeRotationMatrix(r) == m) return r;
+  std::abort();  // products of cube rotations are cube rotations
+}
 
 int inverseRotation(const glm::mat<3, 3, int>& m) {
   for (int r = 0; r < format::kCubeRotationCount; ++r)
@@ -46,6 +53,29 @@ TurnedBlock turnBlock(const Block& b, int cube) {
   }
   // A cell's unit cube turns with the block about its centre, so its solid turns by M^-1.
   const int inverse = inverseRotation(m);
+  const glm::dmat3 inverseMatrix(cubeRotationMatrix(inverse));
+  // A redirection is re-expressed in the turned cell's frame: p_old_cell = M p_new_cell + t_cell,
+  // where t_cell puts a mirrored axis back on the cell, so the target placed by (R, O) in the old
+  // cell is placed by (M^-1 R, M^-1 (O - t_cell)) in the new one. t_cell depends on the cell's
+  // size, so equal records are shared only between cells of equal size along mirrored axes.
+  std::map<std::tuple<BlockId, std::int64_t, std::int64_t, std::int64_t, int, std::array<bool, 3>>, std::uint32_t> records;
+  const auto turnedRedirection = [&](const Redirection& r, const std::array<int, 3>& old) {
+    glm::dvec3 shift(0.0);
+    for (std::size_t i = 0; i < 3; ++i) {
+      if (sign[i] > 0) continue;
+      const auto& bounds = b.boundsM[static_cast<std::size_t>(from[i])];
+      const auto k = static_cast<std::size_t>(old[static_cast<std::size_t>(from[i])]);
+      shift[from[i]] = bounds[k + 1] - bounds[k];
+    }
+    const int rotation = rotationIndex(cubeRotationMatrix(inverse) * cubeRotationMatrix(r.rotation.cube));
+    glm::dvec3 offset = inverseMatrix * (r.offsetM - shift);
+    for (int a = 0; a < 3; ++a) offset[a] = snapToUnits(offset[a]);
+    const auto key = std::make_tuple(r.target, toUnits(offset.x), toUnits(offset.y), toUnits(offset.z), rotation, r.wrap);
+    auto [it, inserted] = records.try_emplace(key, static_cast<std::uint32_t>(out.block.redirections.size()));
+    if (inserted)
+      out.block.redirections.push_back(Redirection{r.target, offset, Rotation{static_cast<std::uint8_t>(rotation), 0}, r.wrap});
+    return it->second;
+  };
   const std::array<int, 3> n{out.block.cellCount(0), out.block.cellCount(1), out.block.cellCount(2)};
   out.block.cells.resize(b.cells.size());
   for (int z = 0; z < n[2]; ++z)
@@ -57,6 +87,7 @@ TurnedBlock turnBlock(const Block& b, int cube) {
           old[static_cast<std::size_t>(from[i])] = sign[i] > 0 ? c[i] : n[i] - 1 - c[i];
         Cell cell = b.cell(old[0], old[1], old[2]);
         if (cell.kind == CellKind::Solid) cell.solid = rotateSolid(cell.solid, inverse);
+        if (cell.kind == CellKind::Redirection) cell.redirection = turnedRedirection(b.redirections[cell.redirection], old);
         out.block.cell(x, y, z) = cell;
       }
   return out;

@@ -512,9 +512,12 @@ long long totalCells(const Hierarchy& h) {
 }  // namespace
 
 Result<Hierarchy> buildHierarchy(Block g0, std::vector<Material> materials, const glm::dvec3& originM,
-                                 const BlockOptions& options, BlockStats& stats) {
+                                 const BlockOptions& options, BlockStats& stats, const std::vector<Block>& subBlocks) {
   Hierarchy h;
   h.materials = std::move(materials);
+  // The solid grid's sub-blocks (quarter-round pieces) come first: sub-block i is block i, so
+  // g0's redirection targets stand as they are in every part g0 is cut into.
+  for (const Block& s : subBlocks) h.addBlock(s);
   stats.cellsBefore = static_cast<long long>(g0.cells.size());
   stats.bytesBefore = estimatedBytes(g0);
   for (const WorldBox& box : options.manual) extractManual(h, g0, box, originM, options.toleranceM, stats);

@@ -74,7 +74,7 @@ struct BuiltVariant {
 BuiltVariant buildVariant(const SolidGrid& grid, const Variant& v, const ConvertOptions& options) {
   const auto start = Clock::now();
   BuiltVariant b;
-  b.hierarchy = buildHierarchy(v.grid->block, grid.materials, grid.originM, v.options, b.stats);
+  b.hierarchy = buildHierarchy(v.grid->block, grid.materials, grid.originM, v.options, b.stats, grid.subBlocks);
   if (!b.hierarchy) {
     b.image = b.hierarchy.error();
     return b;

@@ -1,8 +1,9 @@
 // Solid conversion, quarter cylinders: faces on a quarter of a cylinder parallel to an axis (round
 // building corners, coves, rods) are found, given the boundaries that make each quarter arc fill
 // one cell's cross-section, and those cells become QuarterCylinder or InverseQuarterCylinder
-// solids (converter/solid.hpp, steps 2 and 3). A cell stretches the unit shape, so an elliptic
-// quarter fits as well as a circular one.
+// solids (converter/solid.hpp, steps 2 and 3); a piece whose cross-section other boundaries cut
+// becomes a sub-block of its own that the cells of its box redirect to. A cell stretches the unit
+// shape, so an elliptic quarter fits as well as a circular one.
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -133,77 +134,76 @@ void Builder::findQuadrics() {
   stats.quadrics = static_cast<int>(quadrics.size());
 }
 
+// Adds each piece's axis, tangent lines and ends, so that its box is whole cells. Boundaries from
+// elsewhere (a window recess in the wall beside a round corner: the grid is global) may still cut
+// the box into several cells; fitQuadrics gives such a piece a sub-block.
+void Builder::addQuadricBounds() {
+  for (const QuadricPiece& q : quadrics) {
+    if (!q.represented) continue;
+    const int e = q.e, u = kU[e], v = kV[e];
+    insertBoundaries(bounds[static_cast<std::size_t>(u)], {q.centre.x, q.centre.x + q.quadrant[0] * q.radius.x}, size[u], tol);
+    insertBoundaries(bounds[static_cast<std::size_t>(v)], {q.centre.y, q.centre.y + q.quadrant[1] * q.radius.y}, size[v], tol);
+    insertBoundaries(bounds[static_cast<std::size_t>(e)], {q.e0, q.e1}, size[e], tol);
+  }
+}
+
 namespace {
 
-// The cell range [lo, hi] of one axis: the single cell from lo to hi within the tolerance, or -1.
-int singleCell(const std::vector<double>& bounds, double lo, double hi, double tol) {
-  const int i = cellOf(bounds, 0.5 * (lo + hi));
-  return std::abs(bounds[static_cast<std::size_t>(i)] - lo) <= tol && std::abs(bounds[static_cast<std::size_t>(i + 1)] - hi) <= tol ? i : -1;
+// Whether a piece's layer is solid at point x (grid frame) inside its box, the arc widened by
+// `slack` (metres) towards the solid side.
+bool solidInPiece(const QuadricPiece& q, std::int8_t layer, const dvec3& x, double slack = 0) {
+  const SolidGroup group = solidGroup(Solid{static_cast<std::uint8_t>(layer)});
+  if (group != SolidGroup::QuarterCylinder && group != SolidGroup::InverseQuarterCylinder) return true;  // a box
+  const double rho = std::hypot((x[kU[q.e]] - q.centre.x) / q.radius.x, (x[kV[q.e]] - q.centre.y) / q.radius.y);
+  const double widened = slack / std::max(q.radius.x, q.radius.y);
+  return group == SolidGroup::QuarterCylinder ? rho <= 1 + widened : rho >= 1 - widened;
 }
 
 }  // namespace
 
-// Adds each piece's axis, tangent lines and ends. A piece whose cross-section another boundary
-// cuts (a window recess in the wall beside a round corner: the grid is global) cannot be one cell
-// across and is left to the complementary mesh, and its boundaries are not added; pieces are
-// dropped one at a time, since a dropped piece's boundaries may have been what cut another.
-void Builder::addQuadricBounds() {
-  for (;;) {
-    std::array<std::vector<double>, 3> trial = bounds;
-    for (const QuadricPiece& q : quadrics) {
-      if (!q.represented) continue;
-      const int e = q.e, u = kU[e], v = kV[e];
-      insertBoundaries(trial[static_cast<std::size_t>(u)], {q.centre.x, q.centre.x + q.quadrant[0] * q.radius.x}, size[u], tol);
-      insertBoundaries(trial[static_cast<std::size_t>(v)], {q.centre.y, q.centre.y + q.quadrant[1] * q.radius.y}, size[v], tol);
-      insertBoundaries(trial[static_cast<std::size_t>(e)], {q.e0, q.e1}, size[e], tol);
-    }
-    const auto cut = std::find_if(quadrics.begin(), quadrics.end(), [&](const QuadricPiece& q) {
-      if (!q.represented) return false;
-      const int u = kU[q.e], v = kV[q.e];
-      const double u1 = q.centre.x + q.quadrant[0] * q.radius.x, v1 = q.centre.y + q.quadrant[1] * q.radius.y;
-      return singleCell(trial[static_cast<std::size_t>(u)], std::min(q.centre.x, u1), std::max(q.centre.x, u1), tol) < 0 ||
-             singleCell(trial[static_cast<std::size_t>(v)], std::min(q.centre.y, v1), std::max(q.centre.y, v1), tol) < 0;
-    });
-    if (cut == quadrics.end()) {
-      bounds = std::move(trial);
-      return;
-    }
-    cut->represented = false;
-  }
-}
-
-// The cells of each piece become quarter cylinders: which of the two regions of a cell is solid
+// The cells of each piece's box become quarter cylinders: which of the two regions is solid
 // comes from the winding number at a point well inside the quarter disk and one well outside it
 // (inside: QuarterCylinder; outside: InverseQuarterCylinder; both: a box, the piece hidden there).
-// A piece with a cell empty at both points, or cut by a boundary added after addQuadricBounds
-// (a slope's), is left to the complementary mesh whole. Returns whether every piece was shown.
+// A box one cell across holds them itself; a box that other boundaries cut holds them in a
+// sub-block S (one cell across, the box's layers along e), which each of its cells redirects to,
+// when the box holds nothing but what S shows (subBlockFits). A piece with a layer empty at both
+// points, whose box a boundary merged away, or that S cannot show is left to the complementary
+// mesh whole. Returns whether every piece was shown.
 bool Builder::fitQuadrics(const LazyWinding& winding) {
   bool all = true;
-  stats.quadricsAsCells = 0;
-  for (QuadricPiece& q : quadrics) {
+  stats.quadricsAsCells = stats.quadricsAsSubBlocks = 0;
+  subPiece.assign(shape.size(), -1);
+  for (std::size_t id = 0; id < quadrics.size(); ++id) {
+    QuadricPiece& q = quadrics[id];
+    q.subBlock = false;
     if (!q.represented) continue;
     const int e = q.e, u = kU[e], v = kV[e];
     const auto& U = bounds[static_cast<std::size_t>(u)];
     const auto& V = bounds[static_cast<std::size_t>(v)];
     const auto& E = bounds[static_cast<std::size_t>(e)];
     const double u1 = q.centre.x + q.quadrant[0] * q.radius.x, v1 = q.centre.y + q.quadrant[1] * q.radius.y;
-    const int i = singleCell(U, std::min(q.centre.x, u1), std::max(q.centre.x, u1), tol);
-    const int j = singleCell(V, std::min(q.centre.y, v1), std::max(q.centre.y, v1), tol);
-    const int k0 = cellOf(E, q.e0 + tol), k1 = cellOf(E, q.e1 - tol);
-    bool ok = i >= 0 && j >= 0 && std::abs(E[static_cast<std::size_t>(k0)] - q.e0) <= tol &&
-              std::abs(E[static_cast<std::size_t>(k1 + 1)] - q.e1) <= tol;
-    // The cell's edge on the axis: u = 1 (corner bit 0) when the arc lies below the axis along u.
-    const int orientation = e * 4 + (q.quadrant[0] < 0 ? 1 : 0) + (q.quadrant[1] < 0 ? 2 : 0);
-    struct Fitted {
-      std::size_t id;
-      std::int8_t solid;
-      double length;  // along the axis
+    const double uLo = std::min(q.centre.x, u1), uHi = std::max(q.centre.x, u1);
+    const double vLo = std::min(q.centre.y, v1), vHi = std::max(q.centre.y, v1);
+    q.lo[static_cast<std::size_t>(u)] = cellOf(U, uLo + tol);
+    q.hi[static_cast<std::size_t>(u)] = cellOf(U, uHi - tol) + 1;
+    q.lo[static_cast<std::size_t>(v)] = cellOf(V, vLo + tol);
+    q.hi[static_cast<std::size_t>(v)] = cellOf(V, vHi - tol) + 1;
+    q.lo[static_cast<std::size_t>(e)] = cellOf(E, q.e0 + tol);
+    q.hi[static_cast<std::size_t>(e)] = cellOf(E, q.e1 - tol) + 1;
+    const auto at = [&](int axis, bool high) {
+      const auto& B = bounds[static_cast<std::size_t>(axis)];
+      return B[static_cast<std::size_t>(high ? q.hi[static_cast<std::size_t>(axis)] : q.lo[static_cast<std::size_t>(axis)])];
     };
-    std::vector<Fitted> cells;
-    for (int k = k0; ok && k <= k1; ++k) {
-      const double ua = U[static_cast<std::size_t>(i)], ub = U[static_cast<std::size_t>(i + 1)];
-      const double va = V[static_cast<std::size_t>(j)], vb = V[static_cast<std::size_t>(j + 1)];
-      const double axisU = q.quadrant[0] > 0 ? ua : ub, axisV = q.quadrant[1] > 0 ? va : vb;
+    const double ua = at(u, false), ub = at(u, true), va = at(v, false), vb = at(v, true);
+    bool ok = snappedWithin(ua, uLo, tol) && snappedWithin(ub, uHi, tol) && snappedWithin(va, vLo, tol) &&
+              snappedWithin(vb, vHi, tol) && snappedWithin(at(e, false), q.e0, tol) && snappedWithin(at(e, true), q.e1, tol);
+    q.subBlock = q.hi[static_cast<std::size_t>(u)] - q.lo[static_cast<std::size_t>(u)] > 1 ||
+                 q.hi[static_cast<std::size_t>(v)] - q.lo[static_cast<std::size_t>(v)] > 1;
+    // The box's edge on the axis: u = 1 (corner bit 0) when the arc lies below the axis along u.
+    const int orientation = e * 4 + (q.quadrant[0] < 0 ? 1 : 0) + (q.quadrant[1] < 0 ? 2 : 0);
+    const double axisU = q.quadrant[0] > 0 ? ua : ub, axisV = q.quadrant[1] > 0 ? va : vb;
+    q.layers.clear();
+    for (int k = q.lo[static_cast<std::size_t>(e)]; ok && k < q.hi[static_cast<std::size_t>(e)]; ++k) {
       std::array<bool, 2> in{};
       for (int h = 0; h < 2; ++h) {
         const double share = h == 0 ? kInnerSample : kOuterSample;
@@ -213,34 +213,102 @@ bool Builder::fitQuadrics(const LazyWinding& winding) {
         x[v] = axisV + q.quadrant[1] * share * (vb - va);
         in[static_cast<std::size_t>(h)] = std::abs(winding(x + origin)) >= kInside;
       }
-      std::array<int, 3> cell{};
-      cell[static_cast<std::size_t>(e)] = k;
-      cell[static_cast<std::size_t>(u)] = i;
-      cell[static_cast<std::size_t>(v)] = j;
-      const double length = E[static_cast<std::size_t>(k + 1)] - E[static_cast<std::size_t>(k)];
-      if (!in[0] && !in[1]) {
-        ok = false;  // the piece is missing from the solid here: the mesh must show it
-      } else if (in[0] && in[1]) {
-        cells.push_back({index(cell), 0, length});
-      } else {
-        const SolidGroup group = in[0] ? SolidGroup::QuarterCylinder : SolidGroup::InverseQuarterCylinder;
-        cells.push_back({index(cell), static_cast<std::int8_t>(makeSolid(group, orientation).index), length});
-      }
+      if (!in[0] && !in[1]) ok = false;  // the piece is missing from the solid here: the mesh must show it
+      const SolidGroup group = in[0] ? SolidGroup::QuarterCylinder : SolidGroup::InverseQuarterCylinder;
+      q.layers.push_back(in[0] && in[1] ? std::int8_t{0} : static_cast<std::int8_t>(makeSolid(group, orientation).index));
     }
+    if (ok && q.subBlock) ok = subBlockFits(static_cast<int>(id), winding);
     if (!ok) {
       q.represented = false;
+      q.subBlock = false;
       all = false;
       continue;
     }
-    for (const Fitted& c : cells) {
-      shape[c.id] = c.solid;
-      if (c.solid == 0) continue;
-      hint[c.id] = q.material;
-      wedgeShares.push_back({c.id, q.material, 6, q.area * c.length / (q.e1 - q.e0)});  // the curved face's share
+    // The curved face's share goes to the cell where the arc's middle is, one per layer.
+    std::array<int, 3> arcCell{};
+    arcCell[static_cast<std::size_t>(u)] = cellOf(U, q.centre.x + q.quadrant[0] * q.radius.x * std::numbers::sqrt2 / 2);
+    arcCell[static_cast<std::size_t>(v)] = cellOf(V, q.centre.y + q.quadrant[1] * q.radius.y * std::numbers::sqrt2 / 2);
+    for (int k = q.lo[static_cast<std::size_t>(e)]; k < q.hi[static_cast<std::size_t>(e)]; ++k) {
+      const std::int8_t layer = q.layers[static_cast<std::size_t>(k - q.lo[static_cast<std::size_t>(e)])];
+      std::array<int, 3> c{};
+      c[static_cast<std::size_t>(e)] = k;
+      for (c[static_cast<std::size_t>(v)] = q.lo[static_cast<std::size_t>(v)]; c[static_cast<std::size_t>(v)] < q.hi[static_cast<std::size_t>(v)]; ++c[static_cast<std::size_t>(v)])
+        for (c[static_cast<std::size_t>(u)] = q.lo[static_cast<std::size_t>(u)]; c[static_cast<std::size_t>(u)] < q.hi[static_cast<std::size_t>(u)]; ++c[static_cast<std::size_t>(u)]) {
+          shape[index(c)] = layer;
+          if (q.subBlock) subPiece[index(c)] = static_cast<int>(id);
+        }
+      if (layer == 0) continue;
+      arcCell[static_cast<std::size_t>(e)] = k;
+      hint[index(arcCell)] = q.material;
+      const double length = E[static_cast<std::size_t>(k + 1)] - E[static_cast<std::size_t>(k)];
+      wedgeShares.push_back({index(arcCell), q.material, 6, q.area * length / (q.e1 - q.e0)});
     }
     ++stats.quadricsAsCells;
+    stats.quadricsAsSubBlocks += q.subBlock;
   }
   return all;
+}
+
+// Whether S can stand for every cell of the piece's box: no other face reaches into the box (a
+// window recess or a sill beside a round corner), and the winding number agrees with S at points
+// of every cell (a 3 x 3 lattice across the axis, at mid-layer) away from the arc.
+bool Builder::subBlockFits(int piece, const LazyWinding& winding) const {
+  const QuadricPiece& q = quadrics[static_cast<std::size_t>(piece)];
+  const int e = q.e, u = kU[e], v = kV[e];
+  dvec3 boxLo, boxHi;
+  for (int a = 0; a < 3; ++a) {
+    boxLo[a] = bounds[static_cast<std::size_t>(a)][static_cast<std::size_t>(q.lo[static_cast<std::size_t>(a)])];
+    boxHi[a] = bounds[static_cast<std::size_t>(a)][static_cast<std::size_t>(q.hi[static_cast<std::size_t>(a)])];
+  }
+  // Shrunk by the tolerance: faces on the box's sides and ends (walls beyond the tangents, the
+  // roof on top, the flat sides of a solid corner piece) do not count.
+  const dvec3 centre = 0.5 * (boxLo + boxHi), half = 0.5 * (boxHi - boxLo) - dvec3(tol);
+  for (std::uint32_t f = 0; f < faces.size(); ++f) {
+    if (faces[f].area <= 0 || (faces[f].kind == FaceKind::Quadric && faces[f].group == piece)) continue;
+    if (triangleOverlapsBox(corner(f, 0), corner(f, 1), corner(f, 2), centre, half)) return false;
+  }
+  const double margin = 2 * tol;  // from the arc: the polygon's chords and the tolerance
+  const auto& U = bounds[static_cast<std::size_t>(u)];
+  const auto& V = bounds[static_cast<std::size_t>(v)];
+  const auto& E = bounds[static_cast<std::size_t>(e)];
+  for (int k = q.lo[static_cast<std::size_t>(e)]; k < q.hi[static_cast<std::size_t>(e)]; ++k)
+    for (int j = q.lo[static_cast<std::size_t>(v)]; j < q.hi[static_cast<std::size_t>(v)]; ++j)
+      for (int i = q.lo[static_cast<std::size_t>(u)]; i < q.hi[static_cast<std::size_t>(u)]; ++i)
+        for (int s = 0; s < 9; ++s) {
+          const double su = 0.1 + 0.4 * (s % 3), sv = 0.1 + 0.4 * (s / 3);
+          dvec3 x;
+          x[e] = 0.5 * (E[static_cast<std::size_t>(k)] + E[static_cast<std::size_t>(k + 1)]);
+          x[u] = U[static_cast<std::size_t>(i)] + su * (U[static_cast<std::size_t>(i + 1)] - U[static_cast<std::size_t>(i)]);
+          x[v] = V[static_cast<std::size_t>(j)] + sv * (V[static_cast<std::size_t>(j + 1)] - V[static_cast<std::size_t>(j)]);
+          const double rho = std::hypot((x[u] - q.centre.x) / q.radius.x, (x[v] - q.centre.y) / q.radius.y);
+          if (std::abs(rho - 1) * std::min(q.radius.x, q.radius.y) < margin) continue;
+          const std::int8_t layer = q.layers[static_cast<std::size_t>(k - q.lo[static_cast<std::size_t>(e)])];
+          if ((std::abs(winding(x + origin)) >= kInside) != solidInPiece(q, layer, x)) return false;
+        }
+  return true;
+}
+
+int Builder::arcSide(const QuadricPiece& q, const std::array<int, 3>& cell) const {
+  const int u = kU[q.e], v = kV[q.e];
+  // Nearest and farthest points of the cell from the axis, in units of the radius.
+  const auto span = [&](int axis, double centre, double radius) {
+    const auto& B = bounds[static_cast<std::size_t>(axis)];
+    const double a = (B[static_cast<std::size_t>(cell[static_cast<std::size_t>(axis)])] - centre) / radius;
+    const double b = (B[static_cast<std::size_t>(cell[static_cast<std::size_t>(axis)] + 1)] - centre) / radius;
+    return std::pair(std::min(std::abs(a), std::abs(b)), std::max(std::abs(a), std::abs(b)));
+  };
+  const auto [uNear, uFar] = span(u, q.centre.x, q.radius.x);
+  const auto [vNear, vFar] = span(v, q.centre.y, q.radius.y);
+  if (std::hypot(uFar, vFar) <= 1) return -1;
+  if (std::hypot(uNear, vNear) >= 1) return 1;
+  return 0;
+}
+
+bool Builder::solidAt(std::size_t cell, std::span<const dvec3> points) const {
+  if (subPiece[cell] < 0) return shape[cell] >= 0;
+  const QuadricPiece& q = quadrics[static_cast<std::size_t>(subPiece[cell])];
+  const std::int8_t layer = q.layers[static_cast<std::size_t>(cellAt(cell)[static_cast<std::size_t>(q.e)] - q.lo[static_cast<std::size_t>(q.e)])];
+  return std::all_of(points.begin(), points.end(), [&](const dvec3& x) { return solidInPiece(q, layer, x, tol); });
 }
 
 }  // namespace nut::converter::solid

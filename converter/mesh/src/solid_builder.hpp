@@ -10,6 +10,7 @@
 #include <cstdint>
 #include <mutex>
 #include <optional>
+#include <span>
 #include <vector>
 
 #include <glm/vec2.hpp>
@@ -88,6 +89,9 @@ struct SlopePlane {
 // is parallel to axis e, from one axis-aligned tangent direction to the next. Boundaries at the
 // axis and at both tangent lines make the arc fill the cross-section of one cell, which becomes a
 // QuarterCylinder (solid on the axis side, a round corner) or an InverseQuarterCylinder (a cove).
+// Where boundaries from elsewhere cut that cross-section into several cells, the piece becomes a
+// sub-block S of its own (one cell across, G0's layers along e) and every cell of its box in G0
+// redirects to S.
 struct QuadricPiece {
   int e = 0;                      // axis; (u, v) = (kU[e], kV[e])
   dvec2 centre{0.0};              // the axis in (u, v)
@@ -98,6 +102,9 @@ struct QuadricPiece {
   std::uint16_t material = 0;
   std::vector<std::uint32_t> faces;
   bool represented = true;        // false once its cells could not show it
+  bool subBlock = false;          // shown by S (set by fitQuadrics)
+  std::array<int, 3> lo{}, hi{};  // its box's cells in G0 (hi exclusive), when represented
+  std::vector<std::int8_t> layers;  // the solid of each layer of its box along e
 };
 
 // Boundary helpers (solid_grid.cpp). Boundaries are sorted positions, metres from the origin.
@@ -108,6 +115,11 @@ int nearestBoundary(const std::vector<double>& bounds, double x);
 bool hasBoundaryNear(const std::vector<double>& bounds, double x, double tolerance);
 // Sorted, millimetre-snapped positions at least 1 mm apart; 0 and size stay exact.
 std::vector<double> tidy(std::vector<double> positions, double size);
+// Whether boundary and position x, snapped, are within the tolerance, compared in whole
+// millimetres: a position just the tolerance away (a centimetre from a boundary on a centimetre
+// grid) must count the same whatever the rounding, since a building turned to its own frame (its
+// origin elsewhere) must get the grid it gets upright.
+bool snappedWithin(double boundary, double x, double tol);
 // Inserts positions into one axis's boundaries unless a boundary lies within the tolerance.
 void insertBoundaries(std::vector<double>& bounds, std::vector<double> positions, double size, double tol);
 
@@ -119,6 +131,9 @@ struct Polygon2 {
 // Keeps the part with coordinate `axis` below (keepBelow) or above `bound` (Sutherland-Hodgman).
 void clipAxis(Polygon2& poly, int axis, double bound, bool keepBelow);
 double polygonArea(const Polygon2& poly);
+
+// Whether a triangle overlaps an axis-aligned box, by the separating-axis test (solid_occupancy.cpp).
+bool triangleOverlapsBox(dvec3 a, dvec3 b, dvec3 c, const dvec3& centre, const dvec3& half);
 
 // The winding-number tree, built on first use: a closed mesh without slopes never needs it.
 class LazyWinding {
@@ -157,6 +172,7 @@ struct Builder {
   std::array<int, 3> n{};
   std::vector<std::int8_t> shape;        // per cell: -1 empty, else solid index (0 box, 1..12 wedge)
   std::vector<std::uint16_t> hint;       // per cell: material of the nearest face along the sweep
+  std::vector<int> subPiece;             // per cell: the quadric piece whose sub-block it shows, or -1
   SolidStats stats;
 
   Builder(const Mesh& m, const SolidOptions& o) : mesh(m), options(o), tol(o.toleranceM) {}
@@ -165,6 +181,10 @@ struct Builder {
     return static_cast<std::size_t>(x) + static_cast<std::size_t>(n[0]) * (static_cast<std::size_t>(y) + static_cast<std::size_t>(n[1]) * static_cast<std::size_t>(z));
   }
   std::size_t index(const std::array<int, 3>& c) const { return index(c[0], c[1], c[2]); }
+  std::array<int, 3> cellAt(std::size_t id) const {
+    const auto nx = static_cast<std::size_t>(n[0]), ny = static_cast<std::size_t>(n[1]);
+    return {static_cast<int>(id % nx), static_cast<int>(id / nx % ny), static_cast<int>(id / (nx * ny))};
+  }
   dvec3 corner(std::uint32_t face, int k) const { return p[mesh.triangles[face][static_cast<std::size_t>(k)]]; }
 
   void analyseFaces();
@@ -176,6 +196,13 @@ struct Builder {
   void classify(const LazyWinding& winding);
   bool fitWedges(const LazyWinding& winding);
   bool fitQuadrics(const LazyWinding& winding);
+  bool subBlockFits(int piece, const LazyWinding& winding) const;
+  // Whether the cell is solid at all the points (grid frame) on or in it: a cell showing a
+  // sub-block is solid where S is (within the tolerance), any other where its shape is.
+  bool solidAt(std::size_t cell, std::span<const dvec3> points) const;
+  // Which side of a piece's arc a cell of its box lies: -1 the axis side, 1 the far side, 0 the
+  // arc passes through it.
+  int arcSide(const QuadricPiece& q, const std::array<int, 3>& cell) const;
   void trimCutCells(const LazyWinding& winding);
   bool shownByMesh(std::uint32_t face) const;
   struct Share {
@@ -188,7 +215,7 @@ struct Builder {
   std::vector<Share> computeShares(Mesh& complement, SolidStats& area);
   bool onFailedCell(std::uint32_t face) const;
   std::array<std::vector<double>, 3> materialConflicts(const std::vector<Share>& shares, double& conflictArea) const;
-  void assignMaterials(Block& block, const std::vector<Share>& shares);
+  void assignMaterials(Block& block, std::vector<Block>& subBlocks, const std::vector<Share>& shares);
   std::array<std::vector<double>, 3> extraBounds;  // from material conflicts
 };
 

@@ -49,12 +49,19 @@ std::vector<double> tidy(std::vector<double> positions, double size) {
   return out;
 }
 
-// Inserts positions into one axis's boundaries unless a boundary lies within the tolerance.
+bool snappedWithin(double boundary, double x, double tol) {
+  constexpr double kRoundingM = 1e-9;
+  return std::abs(boundary - snapToUnits(x)) <= tol + kRoundingM;
+}
+
+// Inserts positions into one axis's boundaries unless a boundary lies within the tolerance (in
+// whole millimetres: snappedWithin).
 void insertBoundaries(std::vector<double>& bounds, std::vector<double> positions, double size, double tol) {
+  for (double& p : positions) p = snapToUnits(p);
   std::sort(positions.begin(), positions.end());
   std::vector<double> merged = bounds;
   for (double p : positions)
-    if (!hasBoundaryNear(merged, p, tol)) {
+    if (!snappedWithin(merged[static_cast<std::size_t>(nearestBoundary(merged, p))], p, tol)) {
       merged.push_back(p);
       std::sort(merged.begin(), merged.end());
     }
@@ -404,7 +411,7 @@ Result<SolidGrid> buildSolidGrid(const Mesh& mesh, const SolidOptions& options) 
   out.complement.name = mesh.name + " (complement)";
   out.complement.materials = mesh.materials;
   out.complement.materialNames = mesh.materialNames;
-  builder.assignMaterials(out.block, shares);
+  builder.assignMaterials(out.block, out.subBlocks, shares);
   builder.stats.materialsSeconds += lap();
   out.stats = builder.stats;
   return out;

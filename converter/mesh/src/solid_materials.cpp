@@ -3,8 +3,11 @@
 // (converter/solid.hpp, step 4).
 #include <algorithm>
 #include <cmath>
+#include <span>
 
 #include <glm/geometric.hpp>
+
+#include <nut/units.hpp>
 
 #include "parallel.hpp"
 #include "solid_builder.hpp"
@@ -118,8 +121,17 @@ std::vector<Builder::Share> Builder::computeShares(Mesh& complementOut, SolidSta
           lo[static_cast<std::size_t>(v)] = hi[static_cast<std::size_t>(v)] = j;
           lo[static_cast<std::size_t>(a)] = k - 1;
           hi[static_cast<std::size_t>(a)] = k;
-          const bool solidLo = k > 0 && shape[index(lo)] >= 0;
-          const bool solidHi = k < n[static_cast<std::size_t>(a)] && shape[index(hi)] >= 0;
+          // A cell showing a quarter-round sub-block covers the piece only where S is solid
+          // under all of it; where the arc crosses it, the other side's cell shows it.
+          std::array<dvec3, 12> corners;
+          for (int m = 0; m < piece.n; ++m) {
+            corners[static_cast<std::size_t>(m)][u] = piece.p[static_cast<std::size_t>(m)].x;
+            corners[static_cast<std::size_t>(m)][v] = piece.p[static_cast<std::size_t>(m)].y;
+            corners[static_cast<std::size_t>(m)][a] = A[static_cast<std::size_t>(k)];
+          }
+          const std::span<const dvec3> points(corners.data(), static_cast<std::size_t>(piece.n));
+          const bool solidLo = k > 0 && solidAt(index(lo), points);
+          const bool solidHi = k < n[static_cast<std::size_t>(a)] && solidAt(index(hi), points);
           if (solidLo != solidHi) {
             // The face is on the +a side of the cell below it, on the -a side of the cell above.
             // One that faces into the solid is an inner face (the bottom of a dome standing on
@@ -229,10 +241,15 @@ std::array<std::vector<double>, 3> Builder::materialConflicts(const std::vector<
   return proposals;
 }
 
-void Builder::assignMaterials(Block& block, const std::vector<Share>& shares) {
+// Each cell takes the material of largest area among its shares. A quarter-round piece shown by
+// a sub-block becomes S: one cell across, its box's layers along e, each layer taking the material
+// of largest area over the shares of its box's cells in G0; those cells redirect to S, offset by
+// minus their place in S so that each shows its part of S (clipped by the cell).
+void Builder::assignMaterials(Block& block, std::vector<Block>& subBlocks, const std::vector<Share>& shares) {
   block.cells.assign(shape.size(), Cell::empty());
   std::vector<std::uint16_t> chosen(hint);
   std::vector<double> materialArea(mesh.materials.size(), 0.0);
+  std::vector<std::vector<double>> layerArea(quadrics.size());  // per piece: layer * materials + material
   for (std::size_t i = 0; i < shares.size();) {
     std::size_t j = i;
     std::fill(materialArea.begin(), materialArea.end(), 0.0);
@@ -241,10 +258,76 @@ void Builder::assignMaterials(Block& block, const std::vector<Share>& shares) {
       ++j;
     }
     chosen[shares[i].cell] = static_cast<std::uint16_t>(std::max_element(materialArea.begin(), materialArea.end()) - materialArea.begin());
+    if (const int piece = subPiece[shares[i].cell]; piece >= 0) {
+      const QuadricPiece& q = quadrics[static_cast<std::size_t>(piece)];
+      auto& area = layerArea[static_cast<std::size_t>(piece)];
+      area.resize(q.layers.size() * materialArea.size(), 0.0);
+      const auto k = static_cast<std::size_t>(cellAt(shares[i].cell)[static_cast<std::size_t>(q.e)] - q.lo[static_cast<std::size_t>(q.e)]);
+      for (std::size_t m = 0; m < materialArea.size(); ++m) area[k * materialArea.size() + m] += materialArea[m];
+    }
     i = j;
   }
+  subBlocks.clear();
+  for (std::size_t piece = 0; piece < quadrics.size(); ++piece) {
+    const QuadricPiece& q = quadrics[piece];
+    if (!q.represented || !q.subBlock) continue;
+    const auto& area = layerArea[piece];
+    std::vector<Cell> layers;
+    for (std::size_t k = 0; k < q.layers.size(); ++k) {
+      std::uint16_t material = q.material;
+      if (!area.empty()) {
+        const auto first = area.begin() + static_cast<std::ptrdiff_t>(k * mesh.materials.size());
+        const auto best = std::max_element(first, first + static_cast<std::ptrdiff_t>(mesh.materials.size()));
+        if (*best > 0) material = static_cast<std::uint16_t>(best - first);
+      }
+      layers.push_back(Cell::solidCell(Solid{static_cast<std::uint8_t>(q.layers[k])}, material));
+    }
+    // Layers all alike (the usual case) make S one cell tall: every cell of a column of the box
+    // then shows S from its bottom, so the column shares one record and its cells are equal.
+    const bool uniform = std::all_of(layers.begin(), layers.end(), [&](const Cell& c) { return c == layers.front(); });
+    if (uniform) layers.resize(1);
+    const auto target = static_cast<BlockId>(subBlocks.size());
+    Block s;
+    for (int a = 0; a < 3; ++a) {
+      const auto& B = bounds[static_cast<std::size_t>(a)];
+      const double base = B[static_cast<std::size_t>(q.lo[static_cast<std::size_t>(a)])];
+      const bool layered = a == q.e && !uniform;
+      for (int k = q.lo[static_cast<std::size_t>(a)]; k <= q.hi[static_cast<std::size_t>(a)]; ++k)
+        if (layered || k == q.lo[static_cast<std::size_t>(a)] || k == q.hi[static_cast<std::size_t>(a)])
+          s.boundsM[static_cast<std::size_t>(a)].push_back(snapToUnits(B[static_cast<std::size_t>(k)] - base));
+    }
+    s.cells = layers;
+    for (const Cell& c : layers) stats.quadricCells += c.solid.index != 0;
+    stats.solidCells += static_cast<long long>(layers.size());
+    subBlocks.push_back(std::move(s));
+    const auto firstRecord = static_cast<std::ptrdiff_t>(block.redirections.size());
+    std::array<int, 3> c{};
+    for (c[2] = q.lo[2]; c[2] < q.hi[2]; ++c[2])
+      for (c[1] = q.lo[1]; c[1] < q.hi[1]; ++c[1])
+        for (c[0] = q.lo[0]; c[0] < q.hi[0]; ++c[0]) {
+          // A cell the arc does not pass through is all one side of it: it holds that side of
+          // its layer of S as a plain cell, which needs no record and merges with its neighbours.
+          const int side = arcSide(q, c);
+          const Cell& layer = layers[uniform ? 0 : static_cast<std::size_t>(c[static_cast<std::size_t>(q.e)] - q.lo[static_cast<std::size_t>(q.e)])];
+          if (side != 0) {
+            const bool solid = layer.solid.index == 0 || (side < 0) == (solidGroup(layer.solid) == SolidGroup::QuarterCylinder);
+            block.cells[index(c)] = solid ? Cell::box(layer.material) : Cell::empty();
+            stats.solidCells += solid;
+            continue;
+          }
+          glm::dvec3 offset(0.0);
+          for (int a = 0; a < 3; ++a)
+            if (a != q.e || !uniform)
+              offset[a] = -snapToUnits(bounds[static_cast<std::size_t>(a)][static_cast<std::size_t>(c[static_cast<std::size_t>(a)])] -
+                                       bounds[static_cast<std::size_t>(a)][static_cast<std::size_t>(q.lo[static_cast<std::size_t>(a)])]);
+          const Redirection r{target, offset, Rotation{}, {false, false, false}};
+          const auto shared = std::find(block.redirections.begin() + firstRecord, block.redirections.end(), r);
+          block.cells[index(c)] = Cell::redirect(static_cast<std::uint32_t>(shared - block.redirections.begin()));
+          if (shared == block.redirections.end()) block.redirections.push_back(r);
+        }
+  }
   for (std::size_t id = 0; id < shape.size(); ++id) {
-    if (shape[id] < 0) continue;
+    if (shape[id] < 0 || subPiece[id] >= 0) continue;
     block.cells[id] = Cell::solidCell(Solid{static_cast<std::uint8_t>(shape[id])}, chosen[id]);
     ++stats.solidCells;
     const SolidGroup group = solidGroup(Solid{static_cast<std::uint8_t>(shape[id])});

@@ -286,8 +286,6 @@ bool Builder::shownByMesh(std::uint32_t f) const {
   return !slopes[static_cast<std::size_t>(face.group)].represented || onFailedCell(f);
 }
 
-namespace {
-
 // Separating-axis test of a triangle against an axis-aligned box (Akenine-Moeller 2001): the 3
 // box axes, the triangle normal and the 9 edge cross products.
 bool triangleOverlapsBox(dvec3 a, dvec3 b, dvec3 c, const dvec3& centre, const dvec3& half) {
@@ -316,8 +314,6 @@ bool triangleOverlapsBox(dvec3 a, dvec3 b, dvec3 c, const dvec3& centre, const d
   return true;
 }
 
-}  // namespace
-
 // Box cells that a face of the complementary mesh cuts stay solid only when they are inside all
 // over (all eight corners): a cell half above a roof the grid could not follow would poke through
 // it, while a missing part under the roof is hidden by the roof mesh, and the cell's own faces
@@ -338,7 +334,7 @@ void Builder::trimCutCells(const LazyWinding& winding) {
       for (int y = lo[1]; y <= hi[1]; ++y)
         for (int x = lo[0]; x <= hi[0]; ++x) {
           const std::size_t id = index(x, y, z);
-          if (shape[id] != 0 || cut[id]) continue;
+          if (shape[id] != 0 || cut[id] || subPiece[id] >= 0) continue;  // a sub-block's cell shows S, not its shape
           const dvec3 cellLo(bounds[0][static_cast<std::size_t>(x)], bounds[1][static_cast<std::size_t>(y)], bounds[2][static_cast<std::size_t>(z)]);
           const dvec3 cellHi(bounds[0][static_cast<std::size_t>(x + 1)], bounds[1][static_cast<std::size_t>(y + 1)], bounds[2][static_cast<std::size_t>(z + 1)]);
           // Shrunk a little: a face lying on the cell's side does not cut it.

@@ -25,7 +25,8 @@ struct TurnedBlock {
   glm::dvec3 offsetM{0.0};
 };
 
-// `b` (cells that are empty or solid, no redirections) in the frame of cube rotation `cube`.
+// `b` in the frame of cube rotation `cube`: solids turned, redirections (cube rotations only, no
+// yaw) re-expressed in their turned cells.
 TurnedBlock turnBlock(const Block& b, int cube);
 
 // One rotation per order of the axes (the one with fewest mirrored axes: a mirrored axis only

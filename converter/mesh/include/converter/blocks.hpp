@@ -59,9 +59,11 @@ void simplify(Block& b);
 // Estimated bytes of a block in an HNI (the cost model above).
 long long estimatedBytes(const Block& b);
 
-// Builds the hierarchy: g0 becomes the root (block 0) with its world origin originM, and blocks
-// are extracted from it as options say. Materials are passed through.
+// Builds the hierarchy: g0 becomes the root with its world origin originM, and blocks are
+// extracted from it as options say. Materials are passed through. g0's redirection cells point
+// into subBlocks (Redirection::target is an index there, SolidGrid::subBlocks), which are added
+// first so that those indices are their block ids.
 Result<Hierarchy> buildHierarchy(Block g0, std::vector<Material> materials, const glm::dvec3& originM,
-                                 const BlockOptions& options, BlockStats& stats);
+                                 const BlockOptions& options, BlockStats& stats, const std::vector<Block>& subBlocks = {});
 
 }  // namespace nut::converter

@@ -13,6 +13,8 @@
 //    corner to corner: those cells become wedges. Faces on a quarter of a cylinder whose axis is
 //    parallel to an axis (a round corner, a cove) add the axis and the two tangent lines, so that
 //    the quarter arc fills the cross-section of one cell: those cells become quarter cylinders.
+//    Where other boundaries cut that cross-section, the piece gets a block of its own, one quarter
+//    cylinder across, which every cell of G0 in the piece's box redirects to.
 // 3. Occupancy. Lines through the cell centres along one axis are intersected with the faces.
 //    Where a line meets a closed surface (entries and exits balance, merged where the line passes
 //    through a shared edge or vertex), the running count of entries minus exits is the winding
@@ -67,6 +69,7 @@ struct SolidStats {
   long long wedgeCells = 0;
   int quadrics = 0;                   // quarter-round pieces found (quarter cylinders)
   int quadricsAsCells = 0;            // of those, shown by quadric cells
+  int quadricsAsSubBlocks = 0;        // of those, shown by a block of their own (cut by other boundaries)
   long long quadricCells = 0;         // quarter-cylinder and inverse quarter-cylinder cells
   long long trimmedCells = 0;         // cut by the complementary mesh and not inside all over: empty
   long long columns = 0;              // lines of cells along the sweep axis
@@ -86,6 +89,9 @@ struct SolidStats {
 struct SolidGrid {
   glm::dvec3 originM{0.0};            // world position of the block's minimum corner
   Block block;                        // boundaries relative to originM, on the millimetre grid
+  // What block's redirection cells show: Redirection::target indexes this list (quarter-round
+  // pieces cut by boundaries from elsewhere). buildHierarchy adds them and renumbers the targets.
+  std::vector<Block> subBlocks;
   std::vector<Material> materials;    // cells index into these (the mesh's materials)
   Mesh complement;                    // world coordinates, the mesh's materials
   SolidStats stats;
