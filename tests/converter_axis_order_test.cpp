@@ -9,11 +9,12 @@
 #include <random>
 #include <set>
 
-#include <glm/matrix.hpp>
 
 #include <converter/axis_order.hpp>
 #include <nut/format.hpp>
 #include <nut/hierarchy.hpp>
+
+#include "redirected_point.hpp"
 
 namespace nut::converter {
 namespace {
@@ -35,13 +36,7 @@ int contentAt(const Hierarchy& h, BlockId id, const glm::dvec3& p) {
   if (cell.kind == CellKind::Solid) return solidContains(cell.solid, unit) ? cell.material : -1;
   if (cell.kind == CellKind::Empty) return -1;
   const Redirection& r = b.redirections[cell.redirection];
-  glm::dvec3 local;
-  for (int a = 0; a < 3; ++a) local[a] = p[a] - b.boundsM[static_cast<std::size_t>(a)][static_cast<std::size_t>(c[static_cast<std::size_t>(a)])];
-  glm::dvec3 q = glm::transpose(rotationMatrix(r.rotation)) * (local - r.offsetM);
-  const glm::dvec3 size = h.blocks[r.target].sizeM();
-  for (int a = 0; a < 3; ++a)
-    if (r.wrap[static_cast<std::size_t>(a)]) q[a] -= std::floor(q[a] / size[a]) * size[a];
-  return contentAt(h, r.target, q);
+  return contentAt(h, r.target, testing::redirectedPoint(h, b, c, r, p));
 }
 
 // Cells of uneven millimetre widths holding every kind of solid in random orientations, and cells

@@ -12,6 +12,8 @@
 #include <converter/blocks.hpp>
 #include <nut/hni.hpp>
 
+#include "redirected_point.hpp"
+
 namespace nut::converter {
 namespace {
 
@@ -38,13 +40,7 @@ Sample lookup(const Hierarchy& h, BlockId id, glm::dvec3 p, int depth = 0) {
   if (cell.kind == CellKind::Solid) return {true, cell.material, cell.solid.index};
   if (depth > 32) return {};
   const Redirection& r = b.redirections[cell.redirection];
-  glm::dvec3 local;
-  for (int a = 0; a < 3; ++a) local[a] = p[a] - b.boundsM[static_cast<std::size_t>(a)][static_cast<std::size_t>(c[static_cast<std::size_t>(a)])];
-  glm::dvec3 q = glm::transpose(rotationMatrix(r.rotation)) * (local - r.offsetM);
-  const glm::dvec3 size = h.blocks[r.target].sizeM();
-  for (int a = 0; a < 3; ++a)
-    if (r.wrap[static_cast<std::size_t>(a)]) q[a] -= std::floor(q[a] / size[a]) * size[a];
-  return lookup(h, r.target, q, depth + 1);
+  return lookup(h, r.target, testing::redirectedPoint(h, b, c, r, p), depth + 1);
 }
 
 // Whether p is at least `margin` away from every boundary of G0.
