@@ -5,7 +5,9 @@
 // in the test output folder, converter_quadric/, when not). Corners that are no quarter cylinder (a
 // radius shrinking with height, a wavy arc) stay in the complementary mesh. Corners whose
 // cross-section window recesses cut (the grid is global) become sub-blocks of their own, and so
-// do the house sample's round corners and drum.
+// do the house sample's round corners and drum. A hemispherical dome on a box's roof converts as
+// four SphereOctant cells (sub-blocks where a chimney's boundaries cut them), a flatter cap or a
+// wavy dome stays in the complementary mesh, and so does nothing of the house's dome.
 #include <gtest/gtest.h>
 
 #include <array>
@@ -194,6 +196,118 @@ void expectRoundCorners(const Mesh& mesh, int expected, int subBlocks, const std
   EXPECT_GE(f.worstWithinPct, 99.0) << "see " << path << ".view*.diff.png";
 }
 
+// The closed box [x0, x1] x [y0, y1] x [z0, z1], every face pointing outwards.
+void addBox(Mesh& mesh, const glm::dvec3& lo, const glm::dvec3& hi) {
+  for (int a = 0; a < 3; ++a)
+    for (const double side : {-1.0, 1.0}) {
+      const int u = (a + 1) % 3, v = (a + 2) % 3;
+      std::array<glm::dvec3, 4> quad;
+      for (int k = 0; k < 4; ++k) {
+        glm::dvec3& q = quad[static_cast<std::size_t>(k)];
+        q[a] = side > 0 ? hi[a] : lo[a];
+        q[u] = k == 1 || k == 2 ? hi[u] : lo[u];
+        q[v] = k >= 2 ? hi[v] : lo[v];
+      }
+      glm::dvec3 normal(0.0);
+      normal[a] = side;
+      addQuad(mesh, quad, normal);
+    }
+}
+
+constexpr int kDomeSegments = 16;  // per octant, around and up
+constexpr int kDomeRings = 8;
+constexpr double kDomeRadius = 2;
+const glm::dvec3 kDomeBase(W / 2, H, D / 2);  // the middle of the roof
+
+// A dome on the box's roof, closed by a disk on the roof (facing down): a cap of a sphere whose
+// centre lies `sunk` below the roof, its rim the circle of radius kDomeRadius, the distance from
+// the centre scaled by wave(azimuth, elevation) (a hemisphere: sunk 0, wave 1).
+void addDome(Mesh& mesh, double sunk, const std::function<double(double, double)>& wave) {
+  const double sphere = std::hypot(kDomeRadius, sunk), rim = std::asin(sunk / sphere);
+  const glm::dvec3 centre = kDomeBase - glm::dvec3(0, sunk, 0);
+  const int around = 4 * kDomeSegments;
+  const auto base = static_cast<std::uint32_t>(mesh.positions.size());
+  for (int j = 0; j < kDomeRings; ++j)
+    for (int i = 0; i < around; ++i) {
+      const double az = 2 * std::numbers::pi * i / around;
+      const double el = rim + (0.5 * std::numbers::pi - rim) * j / kDomeRings;
+      const double r = sphere * wave(az, el);
+      mesh.positions.push_back(centre + r * glm::dvec3(std::cos(el) * std::cos(az), std::sin(el), std::cos(el) * std::sin(az)));
+    }
+  const auto pole = static_cast<std::uint32_t>(mesh.positions.size());
+  mesh.positions.push_back(centre + glm::dvec3(0, sphere * wave(0, 0.5 * std::numbers::pi), 0));
+  mesh.positions.push_back(kDomeBase);  // the disk's centre
+  const auto add = [&](std::uint32_t a, std::uint32_t b, std::uint32_t c) {
+    mesh.triangles.push_back({a, b, c});
+    mesh.triangleMaterial.push_back(0);
+  };
+  const auto at = [&](int j, int i) { return base + static_cast<std::uint32_t>(j * around + (i % around)); };
+  for (int i = 0; i < around; ++i) {
+    for (int j = 0; j + 1 < kDomeRings; ++j) {
+      add(at(j, i), at(j + 1, i + 1), at(j, i + 1));
+      add(at(j, i), at(j + 1, i), at(j + 1, i + 1));
+    }
+    add(at(kDomeRings - 1, i), pole, at(kDomeRings - 1, i + 1));
+    add(pole + 1, at(0, i), at(0, i + 1));
+  }
+}
+
+Mesh domedBox(double sunk, const std::function<double(double, double)>& wave, bool chimney = false) {
+  Mesh mesh;
+  mesh.name = "domed";
+  mesh.materials = {Material{220, 200, 170}};
+  mesh.materialNames = {"wall"};
+  addBox(mesh, glm::dvec3(0.0), glm::dvec3(W, H, D));
+  addDome(mesh, sunk, wave);
+  // Beside the dome, its sides' planes crossing the dome's boxes (x = 4.4, 5.6; y = 7).
+  if (chimney) addBox(mesh, glm::dvec3(4.4, H, 6.5), glm::dvec3(5.6, H + 1, 7.5));
+  return mesh;
+}
+
+const auto kSphere = [](double, double) { return 1.0; };
+
+void expectDome(const Mesh& mesh, bool subBlocks, const std::string& stem) {
+  const Conversion c = convert(mesh);
+  const SolidStats& s = c.report.solid;
+  std::printf("%s: %d sphere octants, %d as cells, %lld sphere-octant cells, %zu blocks, NUT %.2f %% (+ %.2f %% hidden), complement %zu triangles\n",
+              stem.c_str(), s.sphereOctants, s.sphereOctantsAsCells, s.sphereOctantCells, c.hierarchy.blocks.size(),
+              100 * nutFraction(c), 100 * s.hiddenAreaM2 / s.areaM2, c.complement.triangles.size());
+  EXPECT_EQ(s.sphereOctants, 4);
+  EXPECT_EQ(s.sphereOctantsAsCells, 4);
+  EXPECT_EQ(s.sphereOctantCells, 4);
+  EXPECT_EQ(cellsOf(c, SolidGroup::SphereOctant), 4);
+  EXPECT_EQ(cellsOf(c, SolidGroup::InverseSphereOctant), 0);
+  EXPECT_EQ(c.hierarchy.blocks.size() > 1, subBlocks);
+  EXPECT_EQ(curvedComplementFaces(c), 0);
+  // The rest is the dome's base disk and the roof under it, hidden between solid cells.
+  EXPECT_EQ(s.complementAreaM2, 0);
+  const std::string path = testing::outputDir("converter_quadric") + "/" + stem;
+  const testing::Fidelity f = testing::measureFidelity(mesh, {&c}, path, 99.0);
+  std::printf("%s: within 8/255: %.2f %% %.2f %% %.2f %% %.2f %% (worst %.2f %%)\n", stem.c_str(), f.withinPct[0],
+              f.withinPct[1], f.withinPct[2], f.withinPct[3], f.worstWithinPct);
+  EXPECT_GE(f.worstWithinPct, 99.0) << "see " << path << ".view*.diff.png";
+}
+
+TEST(SphereOctants, DomeBecomesFourSphereOctantCells) { expectDome(domedBox(0, kSphere), false, "dome"); }
+
+TEST(SphereOctants, DomeCutByBoundariesBecomesSubBlocks) { expectDome(domedBox(0, kSphere, true), true, "dome_chimney"); }
+
+// A cap flatter than a hemisphere (its sphere's centre 1 m below the roof) and a dome whose
+// radius waves by 5 cm: neither is an ellipsoid octant within the 1 cm tolerance, so their faces
+// stay in the complementary mesh.
+TEST(SphereOctants, OtherDomesStayInTheComplementaryMesh) {
+  for (const Mesh& mesh : {domedBox(1, kSphere), domedBox(0, [](double az, double el) { return 1 + 0.025 * std::sin(6 * az) * std::cos(el); })}) {
+    const Conversion c = convert(mesh);
+    const SolidStats& s = c.report.solid;
+    std::printf("other dome: %d sphere octants, %lld sphere-octant cells, complement %zu triangles\n", s.sphereOctants,
+                s.sphereOctantCells, c.complement.triangles.size());
+    EXPECT_EQ(s.sphereOctants, 0);
+    EXPECT_EQ(s.sphereOctantCells, 0);
+    EXPECT_EQ(cellsOf(c, SolidGroup::SphereOctant) + cellsOf(c, SolidGroup::InverseSphereOctant), 0);
+    EXPECT_EQ(curvedComplementFaces(c), 4 * kDomeSegments * (2 * kDomeRings - 1));
+  }
+}
+
 TEST(QuarterCylinders, OneRoundCornerBecomesQuarterCylinderCells) {
   expectRoundCorners(roundedBox({kRound, nullptr, nullptr, nullptr}), 1, 0, "one_corner");
 }
@@ -208,20 +322,23 @@ TEST(QuarterCylinders, CornersCutByRecessesBecomeSubBlocks) {
 }
 
 // The house sample: four round corners (radius 1.5 m) that window recesses cut and a drum that
-// window boundaries cross, all shown by sub-blocks; only the dome (and what is not a quarter
-// cylinder) stays in the complementary mesh. Fidelity: converter_fidelity_test.
+// window boundaries cross, all shown by sub-blocks, and the dome's four quarters as sphere
+// octants. Fidelity: converter_fidelity_test.
 TEST(QuarterCylinders, HouseCornersAndDrumBecomeSubBlocks) {
   auto obj = readObj(std::string(NUT_SOURCE_DIR) + "/samples/obj/house.obj");
   ASSERT_TRUE(obj.ok()) << obj.error().message;
   const Conversion c = convert(mergeObjects(obj->objects, "house"));
   const SolidStats& s = c.report.solid;
-  std::printf("house: %d quarter-round pieces, %d as sub-blocks, NUT %.2f %% (+ %.2f %% hidden), complement %.2f %%, %zu triangles\n",
-              s.quadrics, s.quadricsAsSubBlocks, 100 * nutFraction(c), 100 * s.hiddenAreaM2 / s.areaM2,
-              100 * s.complementAreaM2 / s.areaM2, c.complement.triangles.size());
+  std::printf("house: %d quarter-round pieces, %d as sub-blocks, %d sphere octants, %d shown (%lld cells), NUT %.2f %% "
+              "(+ %.2f %% hidden), complement %.2f %%, %zu triangles\n",
+              s.quadrics, s.quadricsAsSubBlocks, s.sphereOctants, s.sphereOctantsAsCells, s.sphereOctantCells, 100 * nutFraction(c),
+              100 * s.hiddenAreaM2 / s.areaM2, 100 * s.complementAreaM2 / s.areaM2, c.complement.triangles.size());
   EXPECT_EQ(s.quadrics, 8);
   EXPECT_EQ(s.quadricsAsSubBlocks, 8);
-  EXPECT_LT(s.complementAreaM2, 0.05 * s.areaM2);  // 16 % before
-  EXPECT_LT(c.complement.triangles.size(), 1840u - 4 * 2 * 16);  // the corners' sides at least
+  EXPECT_EQ(s.sphereOctants, 4);
+  EXPECT_EQ(s.sphereOctantsAsCells, 4);
+  EXPECT_EQ(curvedComplementFaces(c), 0);  // 1,488 dome triangles before sphere octants
+  EXPECT_LT(s.complementAreaM2, 0.01 * s.areaM2);  // 16 % before quarter cylinders, 4.2 % before sphere octants
 }
 
 // A corner whose radius shrinks from 1 m at the ground to 0.6 m at the top (a quarter cone, its

@@ -352,6 +352,7 @@ std::string reportJson(const ConvertReport& r) {
                 {"solid_cells", s.solidCells},
                 {"wedge_cells", s.wedgeCells},
                 {"quadric_cells", s.quadricCells},
+                {"sphere_octant_cells", s.sphereOctantCells},
                 {"winding_evaluations", s.windingEvaluations},
                 {"ambiguous_cells", s.ambiguousCells}}},
       {"surface", {{"area_m2", s.areaM2},

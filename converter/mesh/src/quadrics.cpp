@@ -3,7 +3,9 @@
 // one cell's cross-section, and those cells become QuarterCylinder or InverseQuarterCylinder
 // solids (converter/solid.hpp, steps 2 and 3); a piece whose cross-section other boundaries cut
 // becomes a sub-block of its own that the cells of its box redirect to. A cell stretches the unit
-// shape, so an elliptic quarter fits as well as a circular one.
+// shape, so an elliptic quarter fits as well as a circular one. Sphere octants (quarters of domes,
+// equator to pole) are found, bounded and fitted the same way, as SphereOctant or
+// InverseSphereOctant cells or sub-blocks.
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -25,6 +27,27 @@ double quarterArc(double a, double b) {
   return 0.25 * std::numbers::pi * (3 * (a + b) - std::sqrt((3 * a + b) * (a + 3 * b)));
 }
 
+// Surface area of an octant of an ellipsoid (Thomsen's formula, within 1.1 %; exact for a sphere).
+double octantArea(double a, double b, double c) {
+  constexpr double p = 1.6075;
+  const double mean = (std::pow(a * b, p) + std::pow(a * c, p) + std::pow(b * c, p)) / 3;
+  return 0.5 * std::numbers::pi * std::pow(mean, 1 / p);
+}
+
+// Corners matched by position, each to one representative: a mesh may repeat a vertex on either
+// side of a seam.
+std::unordered_map<std::uint32_t, std::uint32_t> weldCorners(const std::vector<dvec3>& p) {
+  std::unordered_map<std::uint32_t, std::uint32_t> weld;
+  std::vector<std::uint32_t> order(p.size());
+  std::iota(order.begin(), order.end(), 0u);
+  std::sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) {
+    return p[a].x != p[b].x ? p[a].x < p[b].x : p[a].y != p[b].y ? p[a].y < p[b].y : p[a].z < p[b].z;
+  });
+  for (std::size_t i = 0; i < order.size(); ++i)
+    weld[order[i]] = i > 0 && p[order[i]] == p[order[i - 1]] ? weld[order[i - 1]] : order[i];
+  return weld;
+}
+
 // Polygon faces are chords of the arc: their area falls short of the arc's by (1 - sin x / x) for
 // a segment of angle 2x, under 0.5 % from 8 segments a quarter on. Less than this share of the
 // arc's area means the faces do not cover it (a hole, a sloped top, a partial arc).
@@ -44,17 +67,7 @@ constexpr double kInnerSample = 0.35, kOuterSample = 0.85;
 // slopes. Everything else stays as it was.
 void Builder::findQuadrics() {
   if (!options.quadrics) return;
-  // Corners are matched by position: a mesh may repeat a vertex on either side of a seam.
-  std::unordered_map<std::uint32_t, std::uint32_t> weld;
-  {
-    std::vector<std::uint32_t> order(p.size());
-    std::iota(order.begin(), order.end(), 0u);
-    std::sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) {
-      return p[a].x != p[b].x ? p[a].x < p[b].x : p[a].y != p[b].y ? p[a].y < p[b].y : p[a].z < p[b].z;
-    });
-    for (std::size_t i = 0; i < order.size(); ++i)
-      weld[order[i]] = i > 0 && p[order[i]] == p[order[i - 1]] ? weld[order[i - 1]] : order[i];
-  }
+  const auto weld = weldCorners(p);
   const auto keyOf = [&](std::uint32_t f) {
     const int e = faces[f].axis;
     return e * 4 + (faces[f].areaVector[kU[e]] > 0 ? 1 : 0) + (faces[f].areaVector[kV[e]] > 0 ? 2 : 0);
@@ -64,7 +77,7 @@ void Builder::findQuadrics() {
   for (std::uint32_t f = 0; f < faces.size(); ++f) {
     if (faces[f].kind != FaceKind::Slope) continue;
     for (int k = 0; k < 3; ++k) {
-      const std::uint64_t id = static_cast<std::uint64_t>(weld[mesh.triangles[f][static_cast<std::size_t>(k)]]) * 12 +
+      const std::uint64_t id = static_cast<std::uint64_t>(weld.at(mesh.triangles[f][static_cast<std::size_t>(k)])) * 12 +
                                static_cast<std::uint64_t>(keyOf(f));
       const auto [it, fresh] = owner.emplace(id, f);
       if (!fresh) sets.unite(f, it->second);
@@ -134,6 +147,97 @@ void Builder::findQuadrics() {
   stats.quadrics = static_cast<int>(quadrics.size());
 }
 
+// Faces sloped along all three axes (quarter-round pieces taken) are joined into pieces the same
+// way, by the octant of their normals. A piece whose corners and edge midpoints lie within the
+// tolerance of an ellipsoid octant spanning its bounding box, centred at the box corner behind its
+// normals (a dome) or in front of them (a niche), and whose area covers the octant's, is a
+// sphere-octant piece (e = z, so that (u, v, e) is (x, y, z) and the corner bits come straight
+// from the signs). A cap flatter than a hemisphere, or a bulging one, fits no octant of its box.
+void Builder::findSphereOctants() {
+  if (!options.quadrics) return;
+  const auto weld = weldCorners(p);
+  const auto candidate = [&](std::uint32_t f) {
+    const dvec3& normal = faces[f].areaVector;
+    return (faces[f].kind == FaceKind::General || faces[f].kind == FaceKind::Slope) && normal.x != 0 && normal.y != 0 &&
+           normal.z != 0;
+  };
+  const auto keyOf = [&](std::uint32_t f) {
+    const dvec3& normal = faces[f].areaVector;
+    return (normal.x > 0 ? 1 : 0) + (normal.y > 0 ? 2 : 0) + (normal.z > 0 ? 4 : 0);
+  };
+  UnionFind sets(faces.size());
+  std::unordered_map<std::uint64_t, std::uint32_t> owner;  // (welded corner, key) -> a face there
+  for (std::uint32_t f = 0; f < faces.size(); ++f) {
+    if (!candidate(f)) continue;
+    for (int k = 0; k < 3; ++k) {
+      const std::uint64_t id = static_cast<std::uint64_t>(weld.at(mesh.triangles[f][static_cast<std::size_t>(k)])) * 8 +
+                               static_cast<std::uint64_t>(keyOf(f));
+      const auto [it, fresh] = owner.emplace(id, f);
+      if (!fresh) sets.unite(f, it->second);
+    }
+  }
+  std::unordered_map<std::uint32_t, std::vector<std::uint32_t>> groups;
+  for (std::uint32_t f = 0; f < faces.size(); ++f)
+    if (candidate(f)) groups[sets.find(f)].push_back(f);
+  std::vector<std::vector<std::uint32_t>> pieces;
+  for (auto& [root, members] : groups) pieces.push_back(std::move(members));
+  std::sort(pieces.begin(), pieces.end(), [](const auto& a, const auto& b) { return a.front() < b.front(); });
+
+  stats.sphereOctants = 0;
+  for (std::vector<std::uint32_t>& members : pieces) {
+    dvec3 lo(std::numeric_limits<double>::infinity()), hi(-std::numeric_limits<double>::infinity());
+    double area = 0;
+    std::vector<double> materialArea(mesh.materials.size(), 0.0);
+    for (std::uint32_t f : members) {
+      for (int k = 0; k < 3; ++k) {
+        lo = glm::min(lo, corner(f, k));
+        hi = glm::max(hi, corner(f, k));
+      }
+      area += faces[f].area;
+      materialArea[mesh.triangleMaterial[f]] += faces[f].area;
+    }
+    const dvec3 radius = hi - lo;
+    if (std::min({radius.x, radius.y, radius.z}) <= 2 * tol) continue;
+    const double expected = octantArea(radius.x, radius.y, radius.z);
+    if (area < kMinCoverage * expected || area > kMaxCoverage * expected) continue;
+    QuadricPiece piece;
+    piece.e = 2;
+    piece.radius = dvec2(radius.x, radius.y);
+    piece.e0 = lo.z;
+    piece.e1 = hi.z;
+    piece.area = area;
+    const dvec3 normal = faces[members.front()].areaVector;
+    bool found = false;
+    for (const int side : {1, -1}) {
+      piece.quadrant = {normal.x > 0 ? side : -side, normal.y > 0 ? side : -side};
+      piece.eSign = normal.z > 0 ? side : -side;
+      piece.centre = dvec2(piece.quadrant[0] > 0 ? lo.x : hi.x, piece.quadrant[1] > 0 ? lo.y : hi.y);
+      // Corners on the surface; edge midpoints too, but a chord's midpoint lies inside by its
+      // sagitta (length^2 / 8 radius), which a dome's few rings make more than the tolerance.
+      found = std::all_of(members.begin(), members.end(), [&](std::uint32_t f) {
+        for (int k = 0; k < 3; ++k) {
+          const dvec3 a = corner(f, k), b = corner(f, (k + 1) % 3);
+          const double sagitta = glm::dot(b - a, b - a) / (8 * std::min({radius.x, radius.y, radius.z}));
+          const double off = (piece.rho(0.5 * (a + b)) - 1) * piece.reach();
+          if (std::abs(piece.rho(a) - 1) * piece.reach() > tol || off > tol || off < -tol - sagitta) return false;
+        }
+        return true;
+      });
+      if (found) break;
+    }
+    if (!found) continue;
+    piece.material = static_cast<std::uint16_t>(std::max_element(materialArea.begin(), materialArea.end()) - materialArea.begin());
+    const auto id = static_cast<int>(quadrics.size());
+    for (std::uint32_t f : members) {
+      faces[f].kind = FaceKind::Quadric;
+      faces[f].group = id;
+    }
+    piece.faces = std::move(members);
+    quadrics.push_back(std::move(piece));
+    ++stats.sphereOctants;
+  }
+}
+
 // Adds each piece's axis, tangent lines and ends, so that its box is whole cells. Boundaries from
 // elsewhere (a window recess in the wall beside a round corner: the grid is global) may still cut
 // the box into several cells; fitQuadrics gives such a piece a sub-block.
@@ -153,10 +257,9 @@ namespace {
 // `slack` (metres) towards the solid side.
 bool solidInPiece(const QuadricPiece& q, std::int8_t layer, const dvec3& x, double slack = 0) {
   const SolidGroup group = solidGroup(Solid{static_cast<std::uint8_t>(layer)});
-  if (group != SolidGroup::QuarterCylinder && group != SolidGroup::InverseQuarterCylinder) return true;  // a box
-  const double rho = std::hypot((x[kU[q.e]] - q.centre.x) / q.radius.x, (x[kV[q.e]] - q.centre.y) / q.radius.y);
-  const double widened = slack / std::max(q.radius.x, q.radius.y);
-  return group == SolidGroup::QuarterCylinder ? rho <= 1 + widened : rho >= 1 - widened;
+  if (group == SolidGroup::Box) return true;
+  const double widened = slack / q.reach();
+  return convexQuadric(group) ? q.rho(x) <= 1 + widened : q.rho(x) >= 1 - widened;
 }
 
 }  // namespace
@@ -168,10 +271,11 @@ bool solidInPiece(const QuadricPiece& q, std::int8_t layer, const dvec3& x, doub
 // sub-block S (one cell across, the box's layers along e), which each of its cells redirects to,
 // when the box holds nothing but what S shows (subBlockFits). A piece with a layer empty at both
 // points, whose box a boundary merged away, or that S cannot show is left to the complementary
-// mesh whole. Returns whether every piece was shown.
+// mesh whole. A sphere octant is one layer, its points taken along e as well: one SphereOctant or
+// InverseSphereOctant cell, or S of one cell. Returns whether every piece was shown.
 bool Builder::fitQuadrics(const LazyWinding& winding) {
   bool all = true;
-  stats.quadricsAsCells = stats.quadricsAsSubBlocks = 0;
+  stats.quadricsAsCells = stats.quadricsAsSubBlocks = stats.sphereOctantsAsCells = 0;
   subPiece.assign(shape.size(), -1);
   for (std::size_t id = 0; id < quadrics.size(); ++id) {
     QuadricPiece& q = quadrics[id];
@@ -194,28 +298,33 @@ bool Builder::fitQuadrics(const LazyWinding& winding) {
       const auto& B = bounds[static_cast<std::size_t>(axis)];
       return B[static_cast<std::size_t>(high ? q.hi[static_cast<std::size_t>(axis)] : q.lo[static_cast<std::size_t>(axis)])];
     };
-    const double ua = at(u, false), ub = at(u, true), va = at(v, false), vb = at(v, true);
+    const auto cellsAlong = [&](int axis) { return q.hi[static_cast<std::size_t>(axis)] - q.lo[static_cast<std::size_t>(axis)]; };
+    const double ua = at(u, false), ub = at(u, true), va = at(v, false), vb = at(v, true), ea = at(e, false), eb = at(e, true);
     bool ok = snappedWithin(ua, uLo, tol) && snappedWithin(ub, uHi, tol) && snappedWithin(va, vLo, tol) &&
-              snappedWithin(vb, vHi, tol) && snappedWithin(at(e, false), q.e0, tol) && snappedWithin(at(e, true), q.e1, tol);
-    q.subBlock = q.hi[static_cast<std::size_t>(u)] - q.lo[static_cast<std::size_t>(u)] > 1 ||
-                 q.hi[static_cast<std::size_t>(v)] - q.lo[static_cast<std::size_t>(v)] > 1;
-    // The box's edge on the axis: u = 1 (corner bit 0) when the arc lies below the axis along u.
-    const int orientation = e * 4 + (q.quadrant[0] < 0 ? 1 : 0) + (q.quadrant[1] < 0 ? 2 : 0);
-    const double axisU = q.quadrant[0] > 0 ? ua : ub, axisV = q.quadrant[1] > 0 ? va : vb;
+              snappedWithin(vb, vHi, tol) && snappedWithin(ea, q.e0, tol) && snappedWithin(eb, q.e1, tol);
+    q.subBlock = cellsAlong(u) > 1 || cellsAlong(v) > 1 || (q.octant() && cellsAlong(e) > 1);
+    // A quarter cylinder: the box's edge on the axis, u = 1 (corner bit 0) when the arc lies below
+    // the axis along u. A sphere octant (e = z): the box's corner at the centre.
+    const int orientation = q.octant() ? (q.quadrant[0] < 0 ? 1 : 0) + (q.quadrant[1] < 0 ? 2 : 0) + (q.eSign < 0 ? 4 : 0)
+                                       : e * 4 + (q.quadrant[0] < 0 ? 1 : 0) + (q.quadrant[1] < 0 ? 2 : 0);
+    const SolidGroup convex = q.octant() ? SolidGroup::SphereOctant : SolidGroup::QuarterCylinder;
+    const SolidGroup concave = q.octant() ? SolidGroup::InverseSphereOctant : SolidGroup::InverseQuarterCylinder;
+    const double axisU = q.quadrant[0] > 0 ? ua : ub, axisV = q.quadrant[1] > 0 ? va : vb, axisE = q.eSign > 0 ? ea : eb;
     q.layers.clear();
-    for (int k = q.lo[static_cast<std::size_t>(e)]; ok && k < q.hi[static_cast<std::size_t>(e)]; ++k) {
+    const int layerCount = q.octant() ? 1 : cellsAlong(e);
+    for (int k = 0; ok && k < layerCount; ++k) {
       std::array<bool, 2> in{};
       for (int h = 0; h < 2; ++h) {
         const double share = h == 0 ? kInnerSample : kOuterSample;
         dvec3 x;
-        x[e] = 0.5 * (E[static_cast<std::size_t>(k)] + E[static_cast<std::size_t>(k + 1)]);
+        const int layer = q.lo[static_cast<std::size_t>(e)] + k;
+        x[e] = q.octant() ? axisE + q.eSign * share * (eb - ea) : 0.5 * (E[static_cast<std::size_t>(layer)] + E[static_cast<std::size_t>(layer + 1)]);
         x[u] = axisU + q.quadrant[0] * share * (ub - ua);
         x[v] = axisV + q.quadrant[1] * share * (vb - va);
         in[static_cast<std::size_t>(h)] = std::abs(winding(x + origin)) >= kInside;
       }
       if (!in[0] && !in[1]) ok = false;  // the piece is missing from the solid here: the mesh must show it
-      const SolidGroup group = in[0] ? SolidGroup::QuarterCylinder : SolidGroup::InverseQuarterCylinder;
-      q.layers.push_back(in[0] && in[1] ? std::int8_t{0} : static_cast<std::int8_t>(makeSolid(group, orientation).index));
+      q.layers.push_back(in[0] && in[1] ? std::int8_t{0} : static_cast<std::int8_t>(makeSolid(in[0] ? convex : concave, orientation).index));
     }
     if (ok && q.subBlock) ok = subBlockFits(static_cast<int>(id), winding);
     if (!ok) {
@@ -224,12 +333,14 @@ bool Builder::fitQuadrics(const LazyWinding& winding) {
       all = false;
       continue;
     }
-    // The curved face's share goes to the cell where the arc's middle is, one per layer.
+    // The curved face's share goes to the cell where the surface's middle is, one per layer.
+    const double middle = q.octant() ? 1 / std::numbers::sqrt3 : std::numbers::sqrt2 / 2;
     std::array<int, 3> arcCell{};
-    arcCell[static_cast<std::size_t>(u)] = cellOf(U, q.centre.x + q.quadrant[0] * q.radius.x * std::numbers::sqrt2 / 2);
-    arcCell[static_cast<std::size_t>(v)] = cellOf(V, q.centre.y + q.quadrant[1] * q.radius.y * std::numbers::sqrt2 / 2);
+    arcCell[static_cast<std::size_t>(u)] = cellOf(U, q.centre.x + q.quadrant[0] * q.radius.x * middle);
+    arcCell[static_cast<std::size_t>(v)] = cellOf(V, q.centre.y + q.quadrant[1] * q.radius.y * middle);
+    if (q.octant()) arcCell[static_cast<std::size_t>(e)] = cellOf(E, (q.eSign > 0 ? q.e0 : q.e1) + q.eSign * (q.e1 - q.e0) * middle);
     for (int k = q.lo[static_cast<std::size_t>(e)]; k < q.hi[static_cast<std::size_t>(e)]; ++k) {
-      const std::int8_t layer = q.layers[static_cast<std::size_t>(k - q.lo[static_cast<std::size_t>(e)])];
+      const std::int8_t layer = q.layers[q.layerOf(k)];
       std::array<int, 3> c{};
       c[static_cast<std::size_t>(e)] = k;
       for (c[static_cast<std::size_t>(v)] = q.lo[static_cast<std::size_t>(v)]; c[static_cast<std::size_t>(v)] < q.hi[static_cast<std::size_t>(v)]; ++c[static_cast<std::size_t>(v)])
@@ -237,21 +348,26 @@ bool Builder::fitQuadrics(const LazyWinding& winding) {
           shape[index(c)] = layer;
           if (q.subBlock) subPiece[index(c)] = static_cast<int>(id);
         }
-      if (layer == 0) continue;
-      arcCell[static_cast<std::size_t>(e)] = k;
+      if (layer == 0 || (q.octant() && k != arcCell[static_cast<std::size_t>(e)])) continue;
+      if (!q.octant()) arcCell[static_cast<std::size_t>(e)] = k;
       hint[index(arcCell)] = q.material;
-      const double length = E[static_cast<std::size_t>(k + 1)] - E[static_cast<std::size_t>(k)];
+      const double length = q.octant() ? q.e1 - q.e0 : E[static_cast<std::size_t>(k + 1)] - E[static_cast<std::size_t>(k)];
       wedgeShares.push_back({index(arcCell), q.material, 6, q.area * length / (q.e1 - q.e0)});
     }
-    ++stats.quadricsAsCells;
-    stats.quadricsAsSubBlocks += q.subBlock;
+    if (q.octant()) {
+      ++stats.sphereOctantsAsCells;
+    } else {
+      ++stats.quadricsAsCells;
+      stats.quadricsAsSubBlocks += q.subBlock;
+    }
   }
   return all;
 }
 
 // Whether S can stand for every cell of the piece's box: no other face reaches into the box (a
 // window recess or a sill beside a round corner), and the winding number agrees with S at points
-// of every cell (a 3 x 3 lattice across the axis, at mid-layer) away from the arc.
+// of every cell (a 3 x 3 lattice across the axis, at mid-layer; 3 x 3 x 3 for an octant) away
+// from the arc.
 bool Builder::subBlockFits(int piece, const LazyWinding& winding) const {
   const QuadricPiece& q = quadrics[static_cast<std::size_t>(piece)];
   const int e = q.e, u = kU[e], v = kV[e];
@@ -274,15 +390,15 @@ bool Builder::subBlockFits(int piece, const LazyWinding& winding) const {
   for (int k = q.lo[static_cast<std::size_t>(e)]; k < q.hi[static_cast<std::size_t>(e)]; ++k)
     for (int j = q.lo[static_cast<std::size_t>(v)]; j < q.hi[static_cast<std::size_t>(v)]; ++j)
       for (int i = q.lo[static_cast<std::size_t>(u)]; i < q.hi[static_cast<std::size_t>(u)]; ++i)
-        for (int s = 0; s < 9; ++s) {
-          const double su = 0.1 + 0.4 * (s % 3), sv = 0.1 + 0.4 * (s / 3);
+        for (int s = 0; s < (q.octant() ? 27 : 9); ++s) {
+          const double su = 0.1 + 0.4 * (s % 3), sv = 0.1 + 0.4 * (s / 3 % 3), se = q.octant() ? 0.1 + 0.4 * (s / 9) : 0.5;
           dvec3 x;
-          x[e] = 0.5 * (E[static_cast<std::size_t>(k)] + E[static_cast<std::size_t>(k + 1)]);
+          x[e] = E[static_cast<std::size_t>(k)] + se * (E[static_cast<std::size_t>(k + 1)] - E[static_cast<std::size_t>(k)]);
           x[u] = U[static_cast<std::size_t>(i)] + su * (U[static_cast<std::size_t>(i + 1)] - U[static_cast<std::size_t>(i)]);
           x[v] = V[static_cast<std::size_t>(j)] + sv * (V[static_cast<std::size_t>(j + 1)] - V[static_cast<std::size_t>(j)]);
-          const double rho = std::hypot((x[u] - q.centre.x) / q.radius.x, (x[v] - q.centre.y) / q.radius.y);
-          if (std::abs(rho - 1) * std::min(q.radius.x, q.radius.y) < margin) continue;
-          const std::int8_t layer = q.layers[static_cast<std::size_t>(k - q.lo[static_cast<std::size_t>(e)])];
+          const double smallest = std::min({q.radius.x, q.radius.y, q.octant() ? q.e1 - q.e0 : q.radius.x});
+          if (std::abs(q.rho(x) - 1) * smallest < margin) continue;
+          const std::int8_t layer = q.layers[q.layerOf(k)];
           if ((std::abs(winding(x + origin)) >= kInside) != solidInPiece(q, layer, x)) return false;
         }
   return true;
@@ -299,15 +415,17 @@ int Builder::arcSide(const QuadricPiece& q, const std::array<int, 3>& cell) cons
   };
   const auto [uNear, uFar] = span(u, q.centre.x, q.radius.x);
   const auto [vNear, vFar] = span(v, q.centre.y, q.radius.y);
-  if (std::hypot(uFar, vFar) <= 1) return -1;
-  if (std::hypot(uNear, vNear) >= 1) return 1;
+  // A quarter cylinder's cells span no distance along e.
+  const auto [eNear, eFar] = q.octant() ? span(q.e, q.eSign > 0 ? q.e0 : q.e1, q.e1 - q.e0) : std::pair(0.0, 0.0);
+  if (std::hypot(uFar, vFar, eFar) <= 1) return -1;
+  if (std::hypot(uNear, vNear, eNear) >= 1) return 1;
   return 0;
 }
 
 bool Builder::solidAt(std::size_t cell, std::span<const dvec3> points) const {
   if (subPiece[cell] < 0) return shape[cell] >= 0;
   const QuadricPiece& q = quadrics[static_cast<std::size_t>(subPiece[cell])];
-  const std::int8_t layer = q.layers[static_cast<std::size_t>(cellAt(cell)[static_cast<std::size_t>(q.e)] - q.lo[static_cast<std::size_t>(q.e)])];
+  const std::int8_t layer = q.layers[q.layerOf(cellAt(cell)[static_cast<std::size_t>(q.e)])];
   return std::all_of(points.begin(), points.end(), [&](const dvec3& x) { return solidInPiece(q, layer, x, tol); });
 }
 

@@ -1,12 +1,14 @@
 // converter/mesh/src/solid_builder.hpp — what the steps of solid conversion share (solid.hpp
 // describes the steps): the per-face and per-slope records, the grid helpers, and Builder, which
 // holds the state; solid_grid.cpp (planes, slopes, boundaries, the driver), solid_occupancy.cpp
-// (occupancy, wedges, trimming), quadrics.cpp (quarter cylinders) and solid_materials.cpp
+// (occupancy, wedges, trimming), quadrics.cpp (quarter cylinders, sphere octants) and solid_materials.cpp
 // (materials, complementary mesh) implement it.
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <chrono>
+#include <cmath>
 #include <cstdint>
 #include <mutex>
 #include <optional>
@@ -91,21 +93,41 @@ struct SlopePlane {
 // QuarterCylinder (solid on the axis side, a round corner) or an InverseQuarterCylinder (a cove).
 // Where boundaries from elsewhere cut that cross-section into several cells, the piece becomes a
 // sub-block S of its own (one cell across, G0's layers along e) and every cell of its box in G0
-// redirects to S.
+// redirects to S. A sphere-octant piece (a quarter of a dome, e = z) is the same with a centre
+// and radius along e as well: its box becomes one SphereOctant or InverseSphereOctant cell, or S
+// of one cell that every cell of the box redirects to.
 struct QuadricPiece {
   int e = 0;                      // axis; (u, v) = (kU[e], kV[e])
   dvec2 centre{0.0};              // the axis in (u, v)
   dvec2 radius{0.0};              // along u and v
   std::array<int, 2> quadrant{};  // direction (+1 or -1) from the axis to the arc along u and v
   double e0 = 0, e1 = 0;          // extent along e
+  // A sphere octant's direction (+1 or -1) from its centre to its pole along e, the centre being
+  // at e0 or e1 and the radius e1 - e0; 0 for a quarter cylinder.
+  int eSign = 0;
   double area = 0;
   std::uint16_t material = 0;
   std::vector<std::uint32_t> faces;
   bool represented = true;        // false once its cells could not show it
   bool subBlock = false;          // shown by S (set by fitQuadrics)
   std::array<int, 3> lo{}, hi{};  // its box's cells in G0 (hi exclusive), when represented
-  std::vector<std::int8_t> layers;  // the solid of each layer of its box along e
+  std::vector<std::int8_t> layers;  // the solid of each layer of its box along e (an octant: one)
+
+  bool octant() const { return eSign != 0; }
+  // The largest radius: rho's error times this is a distance.
+  double reach() const { return std::max({radius.x, radius.y, octant() ? e1 - e0 : 0.0}); }
+  // Distance of x (grid frame) from the axis or centre, in units of the radius: 1 on the surface.
+  double rho(const dvec3& x) const {
+    const double du = (x[kU[e]] - centre.x) / radius.x, dv = (x[kV[e]] - centre.y) / radius.y;
+    const double de = octant() ? (x[e] - (eSign > 0 ? e0 : e1)) / (e1 - e0) : 0.0;
+    return std::sqrt(du * du + dv * dv + de * de);
+  }
+  // Index into layers of the box's layer k along e.
+  std::size_t layerOf(int k) const { return octant() ? 0 : static_cast<std::size_t>(k - lo[static_cast<std::size_t>(e)]); }
 };
+
+// Whether a quadric group is solid on the axis's or centre's side of its surface.
+inline bool convexQuadric(SolidGroup g) { return g == SolidGroup::QuarterCylinder || g == SolidGroup::SphereOctant; }
 
 // Boundary helpers (solid_grid.cpp). Boundaries are sorted positions, metres from the origin.
 // Index of the last boundary <= x (clamped to a cell index 0..n-1).
@@ -190,6 +212,7 @@ struct Builder {
   void analyseFaces();
   void findSlopes();
   void findQuadrics();
+  void findSphereOctants();
   void buildBounds();
   void addQuadricBounds();
   void closeSlopes();
@@ -200,8 +223,8 @@ struct Builder {
   // Whether the cell is solid at all the points (grid frame) on or in it: a cell showing a
   // sub-block is solid where S is (within the tolerance), any other where its shape is.
   bool solidAt(std::size_t cell, std::span<const dvec3> points) const;
-  // Which side of a piece's arc a cell of its box lies: -1 the axis side, 1 the far side, 0 the
-  // arc passes through it.
+  // Which side of a piece's arc (an octant's surface) a cell of its box lies: -1 the axis side, 1
+  // the far side, 0 the arc passes through it.
   int arcSide(const QuadricPiece& q, const std::array<int, 3>& cell) const;
   void trimCutCells(const LazyWinding& winding);
   bool shownByMesh(std::uint32_t face) const;

@@ -342,6 +342,7 @@ Result<SolidGrid> buildSolidGrid(const Mesh& mesh, const SolidOptions& options) 
   };
   builder.analyseFaces();
   builder.findQuadrics();  // before slopes: a quarter cylinder's faces are sloped too
+  builder.findSphereOctants();  // a dome's faces near its quarters' seams may be sloped too
   builder.findSlopes();
   const LazyWinding winding(mesh);
   // The grid is built again (at most kAttempts times in all) when a slope did not come out as

@@ -242,7 +242,8 @@ std::array<std::vector<double>, 3> Builder::materialConflicts(const std::vector<
 }
 
 // Each cell takes the material of largest area among its shares. A quarter-round piece shown by
-// a sub-block becomes S: one cell across, its box's layers along e, each layer taking the material
+// a sub-block becomes S: one cell across, its box's layers along e (a sphere octant: one cell,
+// which its box's cells redirect to offset along e too), each layer taking the material
 // of largest area over the shares of its box's cells in G0; those cells redirect to S, offset by
 // minus their place in S so that each shows its part of S (clipped by the cell).
 void Builder::assignMaterials(Block& block, std::vector<Block>& subBlocks, const std::vector<Share>& shares) {
@@ -262,7 +263,7 @@ void Builder::assignMaterials(Block& block, std::vector<Block>& subBlocks, const
       const QuadricPiece& q = quadrics[static_cast<std::size_t>(piece)];
       auto& area = layerArea[static_cast<std::size_t>(piece)];
       area.resize(q.layers.size() * materialArea.size(), 0.0);
-      const auto k = static_cast<std::size_t>(cellAt(shares[i].cell)[static_cast<std::size_t>(q.e)] - q.lo[static_cast<std::size_t>(q.e)]);
+      const std::size_t k = q.layerOf(cellAt(shares[i].cell)[static_cast<std::size_t>(q.e)]);
       for (std::size_t m = 0; m < materialArea.size(); ++m) area[k * materialArea.size() + m] += materialArea[m];
     }
     i = j;
@@ -297,7 +298,7 @@ void Builder::assignMaterials(Block& block, std::vector<Block>& subBlocks, const
           s.boundsM[static_cast<std::size_t>(a)].push_back(snapToUnits(B[static_cast<std::size_t>(k)] - base));
     }
     s.cells = layers;
-    for (const Cell& c : layers) stats.quadricCells += c.solid.index != 0;
+    for (const Cell& c : layers) (q.octant() ? stats.sphereOctantCells : stats.quadricCells) += c.solid.index != 0;
     stats.solidCells += static_cast<long long>(layers.size());
     subBlocks.push_back(std::move(s));
     const auto firstRecord = static_cast<std::ptrdiff_t>(block.redirections.size());
@@ -308,16 +309,16 @@ void Builder::assignMaterials(Block& block, std::vector<Block>& subBlocks, const
           // A cell the arc does not pass through is all one side of it: it holds that side of
           // its layer of S as a plain cell, which needs no record and merges with its neighbours.
           const int side = arcSide(q, c);
-          const Cell& layer = layers[uniform ? 0 : static_cast<std::size_t>(c[static_cast<std::size_t>(q.e)] - q.lo[static_cast<std::size_t>(q.e)])];
+          const Cell& layer = layers[uniform ? 0 : q.layerOf(c[static_cast<std::size_t>(q.e)])];
           if (side != 0) {
-            const bool solid = layer.solid.index == 0 || (side < 0) == (solidGroup(layer.solid) == SolidGroup::QuarterCylinder);
+            const bool solid = layer.solid.index == 0 || (side < 0) == convexQuadric(solidGroup(layer.solid));
             block.cells[index(c)] = solid ? Cell::box(layer.material) : Cell::empty();
             stats.solidCells += solid;
             continue;
           }
           glm::dvec3 offset(0.0);
           for (int a = 0; a < 3; ++a)
-            if (a != q.e || !uniform)
+            if (a != q.e || !uniform || q.octant())
               offset[a] = -snapToUnits(bounds[static_cast<std::size_t>(a)][static_cast<std::size_t>(c[static_cast<std::size_t>(a)])] -
                                        bounds[static_cast<std::size_t>(a)][static_cast<std::size_t>(q.lo[static_cast<std::size_t>(a)])]);
           const Redirection r{target, offset, Rotation{}, {false, false, false}};
@@ -333,6 +334,7 @@ void Builder::assignMaterials(Block& block, std::vector<Block>& subBlocks, const
     const SolidGroup group = solidGroup(Solid{static_cast<std::uint8_t>(shape[id])});
     stats.wedgeCells += group == SolidGroup::Wedge;
     stats.quadricCells += group == SolidGroup::QuarterCylinder || group == SolidGroup::InverseQuarterCylinder;
+    stats.sphereOctantCells += group == SolidGroup::SphereOctant || group == SolidGroup::InverseSphereOctant;
   }
 }
 

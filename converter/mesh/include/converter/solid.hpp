@@ -1,5 +1,5 @@
 // converter/solid.hpp — solid conversion (paper section 5, first step): a triangle mesh becomes
-// one non-uniform grid G0 of empty, box, wedge and quarter-cylinder cells, plus the complementary mesh of the faces
+// one non-uniform grid G0 of empty, box, wedge, quarter-cylinder and sphere-octant cells, plus the complementary mesh of the faces
 // the grid cannot show.
 //
 // 1. Planes. A face whose normal is within `angleToleranceDeg` of an axis is axis-aligned. Per
@@ -14,7 +14,9 @@
 //    parallel to an axis (a round corner, a cove) add the axis and the two tangent lines, so that
 //    the quarter arc fills the cross-section of one cell: those cells become quarter cylinders.
 //    Where other boundaries cut that cross-section, the piece gets a block of its own, one quarter
-//    cylinder across, which every cell of G0 in the piece's box redirects to.
+//    cylinder across, which every cell of G0 in the piece's box redirects to. Faces on an octant of
+//    a sphere (a quarter of a dome) add the planes of its box likewise: one sphere-octant cell, or
+//    a block of its own.
 // 3. Occupancy. Lines through the cell centres along one axis are intersected with the faces.
 //    Where a line meets a closed surface (entries and exits balance, merged where the line passes
 //    through a shared edge or vertex), the running count of entries minus exits is the winding
@@ -47,7 +49,7 @@ struct SolidOptions {
   double toleranceM = 0.01;         // plane clustering and wedge fitting
   double angleToleranceDeg = 1.0;   // how far a normal may be from an axis and still count as on it
   bool wedges = true;               // fit wedge cells to faces sloped along one axis
-  bool quadrics = true;             // fit quarter-cylinder cells to quarter-round pieces
+  bool quadrics = true;             // fit quarter-cylinder and sphere-octant cells to curved pieces
   // Keep a slope whose cells mostly became wedges, leaving its faces over the other cells to the
   // complementary mesh; false: only slopes that became wedges everywhere stay (a smaller grid).
   bool partialWedges = true;
@@ -71,6 +73,9 @@ struct SolidStats {
   int quadricsAsCells = 0;            // of those, shown by quadric cells
   int quadricsAsSubBlocks = 0;        // of those, shown by a block of their own (cut by other boundaries)
   long long quadricCells = 0;         // quarter-cylinder and inverse quarter-cylinder cells
+  int sphereOctants = 0;              // sphere-octant pieces found (quarters of domes)
+  int sphereOctantsAsCells = 0;       // of those, shown by sphere-octant cells (a cell or a sub-block)
+  long long sphereOctantCells = 0;    // sphere-octant and inverse sphere-octant cells
   long long trimmedCells = 0;         // cut by the complementary mesh and not inside all over: empty
   long long columns = 0;              // lines of cells along the sweep axis
   long long windingColumns = 0;       // of those, not closed along the line: decided by winding numbers
