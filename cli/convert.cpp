@@ -129,6 +129,7 @@ int run(const ConvertCliOptions& o) {
     ProgressBar bar(!o.quiet, name);
     options.progress = [&](std::string_view phase, double f) { bar.update(phase, f); };
     auto conversion = converter::convertMesh(std::move(mesh), options);
+    if (conversion) bar.update("write", 0);  // Zopfli takes about a second per 150 KB of pixels
     bar.finish();
     if (!conversion) {
       const std::string hint = obj->objects.size() > 1 ? " (the file holds " + std::to_string(obj->objects.size()) +
@@ -160,6 +161,7 @@ int run(const ConvertCliOptions& o) {
     ProgressBar bar(!o.quiet, name);
     options.progress = [&](std::string_view phase, double f) { bar.update(phase, f); };
     auto conversion = converter::convertMesh(std::move(mesh), options);
+    if (conversion) bar.update("write", 0);
     bar.finish();
     if (!conversion) return fail(o.input + ": object '" + name + "': " + conversion.error().message, kInvalid);
     const bool hasComplement = !conversion->complement.triangles.empty();
