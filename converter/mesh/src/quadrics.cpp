@@ -135,16 +135,21 @@ void Builder::findQuadrics() {
       if (found) break;
     }
     if (!found) continue;
-    piece.material = static_cast<std::uint16_t>(std::max_element(materialArea.begin(), materialArea.end()) - materialArea.begin());
-    const auto id = static_cast<int>(quadrics.size());
-    for (std::uint32_t f : members) {
-      faces[f].kind = FaceKind::Quadric;
-      faces[f].group = id;
-    }
-    piece.faces = std::move(members);
-    quadrics.push_back(std::move(piece));
+    keepPiece(std::move(piece), std::move(members), materialArea);
   }
   stats.quadrics = static_cast<int>(quadrics.size());
+}
+
+// A fitted piece: its faces are shown by its cells (or sub-block), in the material of largest area.
+void Builder::keepPiece(QuadricPiece piece, std::vector<std::uint32_t> members, const std::vector<double>& materialArea) {
+  piece.material = static_cast<std::uint16_t>(std::max_element(materialArea.begin(), materialArea.end()) - materialArea.begin());
+  const auto id = static_cast<int>(quadrics.size());
+  for (std::uint32_t f : members) {
+    faces[f].kind = FaceKind::Quadric;
+    faces[f].group = id;
+  }
+  piece.faces = std::move(members);
+  quadrics.push_back(std::move(piece));
 }
 
 // Faces sloped along all three axes (quarter-round pieces taken) are joined into pieces the same
@@ -226,14 +231,7 @@ void Builder::findSphereOctants() {
       if (found) break;
     }
     if (!found) continue;
-    piece.material = static_cast<std::uint16_t>(std::max_element(materialArea.begin(), materialArea.end()) - materialArea.begin());
-    const auto id = static_cast<int>(quadrics.size());
-    for (std::uint32_t f : members) {
-      faces[f].kind = FaceKind::Quadric;
-      faces[f].group = id;
-    }
-    piece.faces = std::move(members);
-    quadrics.push_back(std::move(piece));
+    keepPiece(std::move(piece), std::move(members), materialArea);
     ++stats.sphereOctants;
   }
 }

@@ -213,6 +213,7 @@ struct Builder {
   void findSlopes();
   void findQuadrics();
   void findSphereOctants();
+  void keepPiece(QuadricPiece piece, std::vector<std::uint32_t> members, const std::vector<double>& materialArea);
   void buildBounds();
   void addQuadricBounds();
   void closeSlopes();
