@@ -193,9 +193,14 @@ Bytes compressImage(const Image& image, PngEffort effort) {
   consider(filterImage(image, Strategy::LeastEntropy, 0));
   if (effort == PngEffort::Smallest) {
     for (int f : {0, 2, 3, 4}) consider(filterImage(image, Strategy::Fixed, f));
-    consider(filterImage(image, Strategy::Incremental, 0));
-    Bytes zopfli = zopfliCompress(bestStream);
-    if (zopfli.size() < best.size()) best = std::move(zopfli);
+    // Zopfli runs at about 150-250 KB per second and core on HNI streams: an atlas page of 64 MB
+    // would take minutes, so beyond this it keeps zlib's best (a few percent larger).
+    constexpr std::size_t kMaxExhaustiveBytes = std::size_t{4} << 20;
+    if (bestStream.size() <= kMaxExhaustiveBytes) {
+      consider(filterImage(image, Strategy::Incremental, 0));
+      Bytes zopfli = zopfliCompress(bestStream);
+      if (zopfli.size() < best.size()) best = std::move(zopfli);
+    }
   }
   return best;
 }
