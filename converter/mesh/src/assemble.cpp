@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <optional>
 
+#include <converter/blocks.hpp>
 #include <nut/format.hpp>
 #include <nut/metadata.hpp>
 #include <nut/units.hpp>
@@ -147,18 +148,7 @@ Result<int> splitBlocks(Hierarchy& h) {
               parent.cell(px, py, pz) = *cell;
               continue;
             }
-            Block piece;
-            for (int a = 0; a < 3; ++a) {
-              const auto& bounds = source.boundsM[static_cast<std::size_t>(a)];
-              const double base = bounds[static_cast<std::size_t>(lo[static_cast<std::size_t>(a)])];
-              for (int i = lo[static_cast<std::size_t>(a)]; i <= hi[static_cast<std::size_t>(a)]; ++i)
-                piece.boundsM[static_cast<std::size_t>(a)].push_back(snapToUnits(bounds[static_cast<std::size_t>(i)] - base));
-            }
-            piece.cells.reserve(static_cast<std::size_t>(hi[0] - lo[0]) * static_cast<std::size_t>(hi[1] - lo[1]) * static_cast<std::size_t>(hi[2] - lo[2]));
-            for (int z = lo[2]; z < hi[2]; ++z)
-              for (int y = lo[1]; y < hi[1]; ++y)
-                for (int x = lo[0]; x < hi[0]; ++x) piece.cells.push_back(source.cell(x, y, z));
-            piece.redirections = source.redirections;  // cells keep their record indices
+            Block piece = subBlock(source, lo, hi);
             const auto target = static_cast<BlockId>(h.blocks.size() + newBlocks.size());
             parent.cell(px, py, pz) = Cell::redirect(static_cast<std::uint32_t>(parent.redirections.size()));
             parent.redirections.push_back(Redirection{target, glm::dvec3(0.0), Rotation{}, {false, false, false}});

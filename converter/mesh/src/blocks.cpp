@@ -34,6 +34,22 @@ long long estimatedBytes(const Block& b) {
   return bytes;
 }
 
+Block subBlock(const Block& b, const std::array<int, 3>& lo, const std::array<int, 3>& hi) {
+  Block out;
+  for (int a = 0; a < 3; ++a) {
+    const auto& bounds = b.boundsM[static_cast<std::size_t>(a)];
+    const double base = bounds[static_cast<std::size_t>(lo[static_cast<std::size_t>(a)])];
+    for (int i = lo[static_cast<std::size_t>(a)]; i <= hi[static_cast<std::size_t>(a)]; ++i)
+      out.boundsM[static_cast<std::size_t>(a)].push_back(snapToUnits(bounds[static_cast<std::size_t>(i)] - base));
+  }
+  out.cells.reserve(static_cast<std::size_t>(hi[0] - lo[0]) * static_cast<std::size_t>(hi[1] - lo[1]) * static_cast<std::size_t>(hi[2] - lo[2]));
+  for (int z = lo[2]; z < hi[2]; ++z)
+    for (int y = lo[1]; y < hi[1]; ++y)
+      for (int x = lo[0]; x < hi[0]; ++x) out.cells.push_back(b.cell(x, y, z));
+  out.redirections = b.redirections;  // cells keep their record indices
+  return out;
+}
+
 namespace {
 
 // Deeper than this the ray casters' 32-level stack would run out (docs/RENDERING.md).
@@ -48,22 +64,6 @@ struct Part {
   std::array<bool, 3> wrap{false, false, false};
 };
 
-// Cells [lo, hi) of b as a block of its own (boundaries relative to its minimum corner).
-Block subBlock(const Block& b, const std::array<int, 3>& lo, const std::array<int, 3>& hi) {
-  Block out;
-  for (int a = 0; a < 3; ++a) {
-    const auto& bounds = b.boundsM[static_cast<std::size_t>(a)];
-    const double base = bounds[static_cast<std::size_t>(lo[static_cast<std::size_t>(a)])];
-    for (int i = lo[static_cast<std::size_t>(a)]; i <= hi[static_cast<std::size_t>(a)]; ++i)
-      out.boundsM[static_cast<std::size_t>(a)].push_back(snapToUnits(bounds[static_cast<std::size_t>(i)] - base));
-  }
-  out.cells.reserve(static_cast<std::size_t>(hi[0] - lo[0]) * static_cast<std::size_t>(hi[1] - lo[1]) * static_cast<std::size_t>(hi[2] - lo[2]));
-  for (int z = lo[2]; z < hi[2]; ++z)
-    for (int y = lo[1]; y < hi[1]; ++y)
-      for (int x = lo[0]; x < hi[0]; ++x) out.cells.push_back(b.cell(x, y, z));
-  out.redirections = b.redirections;  // cells keep their record indices (manual blocks)
-  return out;
-}
 
 // Index steps of b's cells along axis a and the next two axes in cyclic order, so that loops over
 // layers walk the cell array directly.

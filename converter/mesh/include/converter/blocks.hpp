@@ -56,6 +56,10 @@ struct BlockStats {
 // hierarchies from one grid can do it once first.
 void simplify(Block& b);
 
+// Cells [lo, hi) of b as a block of its own: boundaries relative to its minimum corner, the
+// redirections kept whole so that redirection cells keep their record indices.
+Block subBlock(const Block& b, const std::array<int, 3>& lo, const std::array<int, 3>& hi);
+
 // Estimated bytes of a block in an HNI (the cost model above).
 long long estimatedBytes(const Block& b);
 
