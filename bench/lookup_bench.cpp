@@ -18,70 +18,30 @@
 // The NUT's cells have random integer-mm widths in [kMinWidth, kMaxWidth] (fixed seeds); its
 // metadata is built with nut::buildAxisIndex + nut::encodeAxisIndex and laid out like the HNI's
 // metadata region (256 pixels wide, RGBA8): axis a's metadata row at v = 2a, its exact row at
-// v = 2a + 1. The native grid spans the same D per axis. Results: docs/BENCHMARKS.md.
-#include <nut/format.hpp>
-#include <nut/metadata.hpp>
+// v = 2a + 1. The native grid spans the same D per axis. The scene is lookup_scene.hpp, shared with
+// gl_lookup_bench.cpp (the same lookups in GLSL). Results: docs/BENCHMARKS.md.
+#include "lookup_scene.hpp"
 
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <cstddef>
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
-#include <cstring>
 #include <map>
 #include <memory>
-#include <random>
 #include <string>
 #include <vector>
 
 namespace {
 
+using namespace nut::bench;  // the scene: lookup_scene.hpp
+
 constexpr int kQueries = 1 << 16;
-constexpr int kSizes[] = {4, 8, 16, 32, 64};
-constexpr std::uint32_t kSeed = 20130721;
-constexpr int kMinWidth = 250;  // cell widths in mm: within a factor 4 of each other
-constexpr int kMaxWidth = 1000;
-constexpr int kRegionWidth = nut::format::kMetadataRegion;
 
-// mt19937's output sequence is fixed by the standard (the distributions' is not).
-int randomInt(std::mt19937& rng, int lo, int hi) {
-  return lo + static_cast<int>(rng() % static_cast<std::uint32_t>(hi - lo + 1));
-}
-float randomUnit(std::mt19937& rng) {  // [0, 1) in steps of 2^-24
-  return static_cast<float>(rng() >> 8) * (1.0f / 16777216.0f);
-}
-
-// The one texel fetch every method ends with: RGBA8 texel (u, v) of an image `width` texels wide.
-inline std::uint32_t fetchTexel(const std::uint8_t* image, int width, int u, int v) {
-  std::uint32_t texel;
-  const auto offset = static_cast<std::size_t>(static_cast<std::uint32_t>(v * width + u));
-  std::memcpy(&texel, image + 4 * offset, sizeof texel);
-  return texel;
-}
-
-// Native uniform grid, the same arithmetic as AxisView::pixelOf: x * (n / D) clamped in float
-// to [0, n) (max first, so a NaN coordinate lands on cell 0), then truncated.
-struct UniformAxis {
-  float scale = 0;     // n / D
-  float lastCell = 0;  // the largest float below n
-  int cell(float x) const { return static_cast<int>(std::min(lastCell, std::max(0.0f, x * scale))); }
-};
-
-// Binary search: the cell holding x is the number of interior boundaries b_1..b_{W-1} <= x
-// (clamped by construction).
-struct BoundaryAxis {
-  const float* interior = nullptr;
-  int count = 0;  // W - 1
-  int cell(float x) const {
-    return static_cast<int>(std::upper_bound(interior, interior + count, x) - interior);
-  }
-};
-
-// The library's lookups behind the same cell(x) interface.
+// The library's lookups behind the same cell(x) interface as UniformAxis and BoundaryAxis.
 struct HeuristicAxis {
   nut::AxisView view;
   int cell(float x) const { return view.cellHeuristic(x); }
@@ -97,17 +57,11 @@ struct Query {
   float x, y, z;
 };
 
-struct Scene {
-  int n = 0;
-  std::array<float, 3> size{};
-  std::array<int, 3> pixels{};
-  std::vector<std::uint8_t> metaRegion;  // kRegionWidth x 6 RGBA8
-  std::array<std::vector<float>, 3> interior;
-  std::array<UniformAxis, 3> native{};
+// The shared scene (metadata, data image, native grid) and this benchmark's own parts.
+struct Scene : LookupScene {
   std::array<HeuristicAxis, 3> heuristic{};
   std::array<BoundaryAxis, 3> binary{};
   std::array<ExactAxis, 3> exact{};
-  std::vector<std::uint8_t> data;  // (n n) x n RGBA8
   std::vector<Query> queries;
   double heuristicWrong = 0;  // fraction of per-axis heuristic answers that are not the exact cell
 };
@@ -120,44 +74,17 @@ struct Scene {
 std::unique_ptr<Scene> buildScene(int n) {
   auto scene = std::make_unique<Scene>();
   Scene& s = *scene;
-  s.n = n;
-  s.metaRegion.assign(static_cast<std::size_t>(4 * kRegionWidth * 6), 0);
+  if (nut::Status built = buildLookupScene(n, s); !built) fail(n, built.error().message);
   for (std::size_t a = 0; a < 3; ++a) {
-    // Random widths; a new draw in the (rare) case no metadata array of <= 256 pixels fits.
-    std::mt19937 rng(kSeed + static_cast<std::uint32_t>(3 * n) + static_cast<std::uint32_t>(a));
-    std::vector<std::int64_t> bounds;
-    nut::Result<nut::AxisIndex> index = nut::Error{"not built"};
-    for (int attempt = 0; attempt < 100 && !index; ++attempt) {
-      bounds.assign(1, 0);
-      for (int c = 0; c < n; ++c)
-        bounds.push_back(bounds.back() + randomInt(rng, kMinWidth, kMaxWidth));
-      index = nut::buildAxisIndex(bounds);
-    }
-    if (!index) fail(n, index.error().message);
-    const nut::AxisIndex& ix = *index;
-    std::uint8_t* metaRow = s.metaRegion.data() + 4 * kRegionWidth * (2 * a);
-    std::uint8_t* exactRow = metaRow + 4 * kRegionWidth;
-    nut::encodeAxisIndex(ix, metaRow, exactRow);
-    const float size = static_cast<float>(bounds.back());
-    s.size[a] = size;
-    s.pixels[a] = ix.pixels();
-    auto& inner = s.interior[a];
-    for (int m = 1; m < n; ++m) inner.push_back(static_cast<float>(bounds[static_cast<std::size_t>(m)]));
-    const nut::AxisView view = nut::AxisView::make(metaRow, exactRow, ix.pixels(), n, size);
-    s.native[a] = {.scale = static_cast<float>(n) / size,
-                   .lastCell = std::nextafter(static_cast<float>(n), 0.0f)};
-    s.heuristic[a] = {view};
-    s.binary[a] = {.interior = inner.data(), .count = n - 1};
-    s.exact[a] = {view};
+    s.heuristic[a] = {s.views[a]};
+    s.binary[a] = {.interior = s.interior[a].data(), .count = n - 1};
+    s.exact[a] = {s.views[a]};
   }
-  std::mt19937 rng(kSeed);
-  s.data.resize(static_cast<std::size_t>(4) * n * n * n);
-  for (auto& byte : s.data) byte = static_cast<std::uint8_t>(rng() >> 24);
   s.queries.resize(kQueries);
   for (Query& q : s.queries) {
     float* c[3] = {&q.x, &q.y, &q.z};
     for (std::size_t a = 0; a < 3; ++a)
-      *c[a] = std::min(randomUnit(rng) * s.size[a], std::nextafter(s.size[a], 0.0f));
+      *c[a] = std::min(randomUnit(s.rng) * s.size[a], std::nextafter(s.size[a], 0.0f));
   }
   // Correctness: every exact lookup agrees with the binary search; a heuristic answer that differs
   // is one cell off, for a coordinate within D / (512 M) of the boundary between the two cells

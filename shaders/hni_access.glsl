@@ -77,14 +77,14 @@ uvec4 exactTexel(BlockInfo b, int a, int k) { return hniTexel(b.meta[a] + ivec2(
 // Metadata pixel of coordinate x (units); outside [0, D) clamps to the end pixels.
 int pixelOf(BlockInfo b, int a, float x) { return int(min(b.lastPixel[a], max(0.0, x * b.scale[a]))); }
 
-// Heuristic random access (one fetch, p = metaTexel(b, a, pixelOf(b, a, x))): q is x in
-// 1/256-pixel steps, whose pixel q >> 8 is pixelOf's (stepScale is scale times a power of two);
-// the cell is i, plus one when the pixel holds a boundary (f != 0) and the fraction reaches f
-// (f = 0 wraps to 255: never).
-int cellHeuristic(BlockInfo b, int a, float x, uvec4 p) {
-  uint q = uint(int(min(b.lastStep[a], max(0.0, x * b.stepScale[a]))));
-  return int(p.r) + ((q & 255u) > ((p.g - 1u) & 255u) ? 1 : 0);
-}
+// x in 1/256-pixel steps, clamped like pixelOf: its pixel q >> 8 is pixelOf's (stepScale is scale
+// times a power of two), so the heuristic lookup needs no pixelOf of its own.
+int stepOf(BlockInfo b, int a, float x) { return int(min(b.lastStep[a], max(0.0, x * b.stepScale[a]))); }
+
+// Heuristic random access (one fetch, p = metaTexel(b, a, q >> 8) for q = stepOf(b, a, x)): the
+// cell is i, plus one when the pixel holds a boundary (f != 0) and the fraction reaches f (f = 0
+// wraps to 255: never).
+int cellHeuristic(uvec4 p, int q) { return int(p.r) + ((uint(q) & 255u) > ((p.g - 1u) & 255u) ? 1 : 0); }
 
 // Exact random access (a second fetch): the exact row decides; where f = 0 its 0 becomes 2^24,
 // beyond every coordinate inside the block.

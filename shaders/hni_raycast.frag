@@ -113,9 +113,10 @@ float land(inout Level L, BlockInfo b, float tStart, float tLimit, vec3 entryNor
     L.tile[a] = wraps(L, a) ? floor(x / b.size[a]) * b.size[a] : 0.0;
     x -= L.tile[a];
     // The cell lookup and both traversal queries read the same metadata pixel: fetch it once.
-    int k = pixelOf(b, a, x);
+    int q = kExactLookup ? 0 : stepOf(b, a, x);
+    int k = kExactLookup ? pixelOf(b, a, x) : q >> 8;
     uvec4 p = metaTexel(b, a, k);
-    int c = kExactLookup ? cellExact(b, a, x, k, p) : cellHeuristic(b, a, x, p);
+    int c = kExactLookup ? cellExact(b, a, x, k, p) : cellHeuristic(p, q);
     L.cell[a] = c;
     L.kLo[a] = c > 0 ? boundaryPixelAhead(p, k, c, -1) : -1;
     L.kHi[a] = c + 1 < b.cells[a] ? boundaryPixelAhead(p, k, c, +1) : b.pixels[a];

@@ -245,8 +245,10 @@ void main() {
   BlockInfo b = loadBlock(ivec2(q.xy));
   int a = int(q.z);
   int k = pixelOf(b, a, q.w);
+  int step = stepOf(b, a, q.w);
   uvec4 p = metaTexel(b, a, k);
-  result = vec4(float(cellHeuristic(b, a, q.w, p)), float(cellExact(b, a, q.w, k, p)), float(k),
+  // The heuristic lookup reads pixel step >> 8: a different pixel than pixelOf shows as -1.
+  result = vec4(step >> 8 == k ? float(cellHeuristic(p, step)) : -1.0, float(cellExact(b, a, q.w, k, p)), float(k),
                 boundaryHeuristic(b, a, k));
 }
 )", width, height, {&inputs}, atlas->texture());
