@@ -6,11 +6,14 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 #include <random>
+#include <set>
 
 #include <converter/assemble.hpp>
 #include <converter/blocks.hpp>
 #include <nut/hni.hpp>
+#include <nut/solids.hpp>
 
 #include "redirected_point.hpp"
 
@@ -133,6 +136,229 @@ TEST(SplitBlocks, WideDataComponentIsSplit) {
   for (const Block& b : h.blocks) EXPECT_TRUE(blockFits(b));
   expectSameContent(g0, h, 2000, 6);
   EXPECT_TRUE(compile(h).ok());
+}
+
+// --- Manual blocks (`nut convert --block`): the paper's one-to-many cell matching ---------------
+
+// A block with the given boundaries per axis, every cell set by `content` from its centre.
+template <typename F>
+Block blockFromBounds(const std::array<std::vector<double>, 3>& bounds, F content) {
+  Block b;
+  b.boundsM = bounds;
+  b.cells.assign(static_cast<std::size_t>(b.cellCount(0)) * static_cast<std::size_t>(b.cellCount(1)) * static_cast<std::size_t>(b.cellCount(2)),
+                 Cell::empty());
+  for (int z = 0; z < b.cellCount(2); ++z)
+    for (int y = 0; y < b.cellCount(1); ++y)
+      for (int x = 0; x < b.cellCount(0); ++x) {
+        const glm::dvec3 c(0.5 * (bounds[0][static_cast<std::size_t>(x)] + bounds[0][static_cast<std::size_t>(x + 1)]),
+                           0.5 * (bounds[1][static_cast<std::size_t>(y)] + bounds[1][static_cast<std::size_t>(y + 1)]),
+                           0.5 * (bounds[2][static_cast<std::size_t>(z)] + bounds[2][static_cast<std::size_t>(z + 1)]));
+        b.cell(x, y, z) = content(c);
+      }
+  return b;
+}
+
+std::vector<double> sortedUnique(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  v.erase(std::unique(v.begin(), v.end()), v.end());
+  return v;
+}
+
+// A facade (x along it, y into the wall, z up) of 2 floors of 6 bays, 3 m by 3 m each, with a
+// window 1.2 m wide and 1.4 m high in every bay: a 0.1 m recess in front of glass (material 2) in a
+// wall of material 1. Two things elsewhere cut some of the windows in the global grid:
+//   - a sign (material 3) on the wall above the ground-floor windows from x = 4.6 to 10.9 cuts the
+//     windows of bays 1 (0.6 m in) and 3 (0.9 m in) on both floors;
+//   - a bracket on a pipe beside the facade (x 18 to 18.3) at z 4.3 to 4.4 cuts all first-floor
+//     windows.
+// Only the ground-floor windows of bays 0, 2, 4 and 5 are whole cells.
+struct FacadeVariant {
+  double bay1Wider = 0.0;        // bay 1's window this much wider (m)
+  bool bay3GroundOdd = false;    // the glass right of the sign's cut in bay 3, ground floor, is material 4
+  std::uint8_t glassSolid = 0;   // the glass cells' solid (0: box)
+};
+constexpr int kFloors = 2, kBays = 6;
+
+Block facade(const FacadeVariant& v = {}) {
+  std::vector<double> xs{0.0, 4.6, 10.9, 18.0, 18.3}, ys{0.0, 0.1, 0.3}, zs{0.0, 2.6, 2.9, 4.3, 4.4, 6.0};
+  const auto windowX = [&](int bay) {
+    const double l = 3.0 * bay + 1.0;
+    return std::pair<double, double>{l, l + 1.2 + (bay == 1 ? v.bay1Wider : 0.0)};
+  };
+  for (int bay = 0; bay < kBays; ++bay) {
+    xs.push_back(windowX(bay).first);
+    xs.push_back(windowX(bay).second);
+    xs.push_back(3.0 * bay + 3.0);
+  }
+  for (int f = 0; f < kFloors; ++f) {
+    zs.push_back(3.0 * f + 1.0);
+    zs.push_back(3.0 * f + 2.4);
+  }
+  return blockFromBounds({sortedUnique(xs), ys, sortedUnique(zs)}, [&](const glm::dvec3& c) {
+    if (c.x > 18.0) return c.y < 0.1 && c.z > 4.3 && c.z < 4.4 ? Cell::box(1) : Cell::empty();  // the bracket
+    const int bay = static_cast<int>(c.x / 3.0), floor = static_cast<int>(c.z / 3.0);
+    const double zf = c.z - 3.0 * floor;
+    const bool inWindow = c.x > windowX(bay).first && c.x < windowX(bay).second && zf > 1.0 && zf < 2.4;
+    if (inWindow) {
+      if (c.y < 0.1) return Cell::empty();
+      const std::uint16_t glass = v.bay3GroundOdd && bay == 3 && floor == 0 && c.x > 10.9 ? 4 : 2;
+      return Cell::solidCell(Solid{v.glassSolid}, glass);
+    }
+    if (c.y < 0.1 && c.x > 4.6 && c.x < 10.9 && c.z > 2.6 && c.z < 2.9) return Cell::box(3);  // the sign
+    return Cell::box(1);
+  });
+}
+
+// A box around the window of `bay` on `floor`, 1 cm inside it (snapped outwards to its cells).
+WorldBox windowBox(int bay, int floor) {
+  const glm::dvec3 lo(3.0 * bay + 1.0, 0.0, 3.0 * floor + 1.0);
+  return {lo + glm::dvec3(0.01), lo + glm::dvec3(1.19, 0.29, 1.39)};
+}
+
+struct ManualResult {
+  Hierarchy h;
+  BlockStats stats;
+};
+ManualResult extractManualOnly(const Block& g0, const WorldBox& box, double tolerance = 0.01) {
+  BlockOptions options;
+  options.automatic = false;
+  options.manual = {box};
+  options.toleranceM = tolerance;
+  ManualResult r;
+  auto h = buildHierarchy(g0, {Material{}, Material{200, 200, 200}, Material{40, 60, 90}, Material{200, 30, 30}, Material{10, 90, 10}},
+                          glm::dvec3(0.0), options, r.stats);
+  EXPECT_TRUE(h.ok());
+  if (h.ok()) r.h = std::move(*h);
+  return r;
+}
+
+// The matching before this one: places of g0 whose cells match the box's cells one for one (widths
+// within the tolerance, identical cells), not overlapping, found in scan order.
+int cellForCellPlaces(const Block& g0, const WorldBox& box, double tolerance = 0.01) {
+  std::array<int, 3> lo{}, n{};
+  for (int a = 0; a < 3; ++a) {
+    const auto& b = g0.boundsM[static_cast<std::size_t>(a)];
+    lo[static_cast<std::size_t>(a)] = static_cast<int>(std::upper_bound(b.begin(), b.end(), box.min[a]) - b.begin()) - 1;
+    n[static_cast<std::size_t>(a)] = static_cast<int>(std::lower_bound(b.begin(), b.end(), box.max[a]) - b.begin()) - lo[static_cast<std::size_t>(a)];
+  }
+  const auto width = [&](int a, int i) {
+    return g0.boundsM[static_cast<std::size_t>(a)][static_cast<std::size_t>(i + 1)] - g0.boundsM[static_cast<std::size_t>(a)][static_cast<std::size_t>(i)];
+  };
+  std::vector<bool> taken(g0.cells.size(), false);
+  int places = 0;
+  for (int z = 0; z + n[2] <= g0.cellCount(2); ++z)
+    for (int y = 0; y + n[1] <= g0.cellCount(1); ++y)
+      for (int x = 0; x + n[0] <= g0.cellCount(0); ++x) {
+        const std::array<int, 3> at{x, y, z};
+        bool match = true;
+        for (int a = 0; a < 3 && match; ++a)
+          for (int i = 0; i < n[static_cast<std::size_t>(a)] && match; ++i)
+            match = std::abs(width(a, at[static_cast<std::size_t>(a)] + i) - width(a, lo[static_cast<std::size_t>(a)] + i)) <= tolerance;
+        for (int k = 0; k < n[2] && match; ++k)
+          for (int j = 0; j < n[1] && match; ++j)
+            for (int i = 0; i < n[0] && match; ++i)
+              match = !taken[g0.cellIndex(x + i, y + j, z + k)] && g0.cell(x + i, y + j, z + k) == g0.cell(lo[0] + i, lo[1] + j, lo[2] + k);
+        if (!match) continue;
+        ++places;
+        for (int k = 0; k < n[2]; ++k)
+          for (int j = 0; j < n[1]; ++j)
+            for (int i = 0; i < n[0]; ++i) taken[g0.cellIndex(x + i, y + j, z + k)] = true;
+      }
+  return places;
+}
+
+int redirectionCells(const Block& b) {
+  return static_cast<int>(std::count_if(b.cells.begin(), b.cells.end(), [](const Cell& c) { return c.kind == CellKind::Redirection; }));
+}
+
+TEST(ManualBlocks, WindowCutByBoundariesFromElsewhereIsFoundEverywhere) {
+  const Block g0 = facade();
+  const WorldBox box = windowBox(0, 0);  // a whole window
+  EXPECT_EQ(cellForCellPlaces(g0, box), 4);  // the ground-floor windows of bays 0, 2, 4 and 5
+  const ManualResult r = extractManualOnly(g0, box);
+  ASSERT_EQ(r.stats.found.size(), 1u);
+  const ExtractedBlock& found = r.stats.found[0];
+  EXPECT_TRUE(found.manual);
+  EXPECT_EQ(found.instances, kFloors * kBays);
+  EXPECT_EQ(found.cells, (std::array<int, 3>{1, 2, 1}));  // recess and glass
+  EXPECT_NEAR(found.sizeM.x, 1.2, 1e-9);
+  expectSameContent(g0, r.h, 20000, 11);
+  // Every window cell redirects (4 whole windows of 2 cells, 8 cut ones of 4 or 6 or 12 cells).
+  const Block& root = r.h.blocks[r.h.root];
+  EXPECT_EQ(redirectionCells(root), 4 * 2 + 2 * 4 + 4 * 6 + 2 * 12);
+  // One record per distinct offset: x in {0, 0.6, 0.9} (the sign's cuts), y in {0, 0.1}, z in
+  // {0, 0.3, 0.4} (the bracket's cuts), all used.
+  ASSERT_EQ(root.redirections.size(), 18u);
+  std::set<std::array<long long, 3>> offsets;
+  for (const Redirection& red : root.redirections) {
+    EXPECT_EQ(red.target, found.block);
+    offsets.insert({std::llround(red.offsetM.x * 1000), std::llround(red.offsetM.y * 1000), std::llround(red.offsetM.z * 1000)});
+  }
+  EXPECT_EQ(offsets.size(), 18u);
+  EXPECT_TRUE(offsets.count({-600, -100, -400}));
+  EXPECT_TRUE(offsets.count({-900, 0, -300}));
+}
+
+TEST(ManualBlocks, BlockSelectedOnACutWindowFindsTheWholeOnes) {
+  const Block g0 = facade();
+  const WorldBox box = windowBox(1, 1);  // cut by the sign's edge (x) and the bracket (z)
+  EXPECT_EQ(cellForCellPlaces(g0, box), 1);  // only itself: bay 3 is cut elsewhere
+  const ManualResult r = extractManualOnly(g0, box);
+  ASSERT_EQ(r.stats.found.size(), 1u);
+  EXPECT_EQ(r.stats.found[0].cells, (std::array<int, 3>{1, 2, 1}));  // simplified: the cuts are gone
+  EXPECT_EQ(r.stats.found[0].instances, kFloors * kBays);
+  expectSameContent(g0, r.h, 20000, 12);
+}
+
+TEST(ManualBlocks, NearMissesAreNotMatched) {
+  {
+    // Bay 1's window 2 cm wider: its two cells (split by the sign) sum 2 cm off, beyond 1 cm.
+    const Block g0 = facade({.bay1Wider = 0.02});
+    const ManualResult r = extractManualOnly(g0, windowBox(0, 0));
+    ASSERT_EQ(r.stats.found.size(), 1u);
+    EXPECT_EQ(r.stats.found[0].instances, kFloors * kBays - 2);
+    expectSameContent(g0, r.h, 5000, 13);
+  }
+  {
+    // 5 mm wider is within the tolerance: matched.
+    const ManualResult r = extractManualOnly(facade({.bay1Wider = 0.005}), windowBox(0, 0));
+    ASSERT_EQ(r.stats.found.size(), 1u);
+    EXPECT_EQ(r.stats.found[0].instances, kFloors * kBays);
+  }
+  {
+    // The part of bay 3's ground-floor glass right of the sign's cut has another material.
+    const Block g0 = facade({.bay3GroundOdd = true});
+    const ManualResult r = extractManualOnly(g0, windowBox(0, 0));
+    ASSERT_EQ(r.stats.found.size(), 1u);
+    EXPECT_EQ(r.stats.found[0].instances, kFloors * kBays - 1);
+    expectSameContent(g0, r.h, 5000, 14);
+  }
+  {
+    // Glass that is not a box (a wedge) does not look the same cut in two: only whole windows match.
+    const Block g0 = facade({.glassSolid = makeSolid(SolidGroup::Wedge, 0).index});
+    const ManualResult r = extractManualOnly(g0, windowBox(0, 0));
+    ASSERT_EQ(r.stats.found.size(), 1u);
+    EXPECT_EQ(r.stats.found[0].instances, 4);
+    expectSameContent(g0, r.h, 5000, 15);
+  }
+}
+
+TEST(ManualBlocks, PlacesMatchingCellForCellStillMatch) {
+  // Three pairs of box cells with gaps; the pair selected merges into one 2 m cell of S. The last
+  // pair is 8 mm too wide per cell: each within the 1 cm tolerance, the pair's sum not, so only
+  // matching the selection cell for cell (as before S was simplified) finds it.
+  const std::vector<double> xs{0.0, 1.0, 2.0, 2.5, 3.5, 4.5, 5.0, 6.008, 7.016, 7.5};
+  const Block g0 = blockFromBounds({xs, {0.0, 1.0}, {0.0, 1.0}}, [](const glm::dvec3& c) {
+    const bool gap = (c.x > 2.0 && c.x < 2.5) || (c.x > 4.5 && c.x < 5.0) || c.x > 7.016;
+    return gap ? Cell::empty() : Cell::box(1);
+  });
+  const WorldBox box{{0.01, 0.01, 0.01}, {1.99, 0.99, 0.99}};
+  EXPECT_EQ(cellForCellPlaces(g0, box), 3);
+  const ManualResult r = extractManualOnly(g0, box);
+  ASSERT_EQ(r.stats.found.size(), 1u);
+  EXPECT_EQ(r.stats.found[0].cells, (std::array<int, 3>{1, 1, 1}));
+  EXPECT_EQ(r.stats.found[0].instances, 3);
+  EXPECT_EQ(redirectionCells(r.h.blocks[r.h.root]), 6);
 }
 
 }  // namespace

@@ -26,7 +26,11 @@ namespace nut::converter {
 struct BlockOptions {
   bool automatic = true;
   bool cuts = true;              // also split blocks in two where the halves need fewer boundaries
-  std::vector<WorldBox> manual;  // world metres; each is snapped outwards to whole cells of G0
+  // World metres; each is snapped outwards to whole cells of G0 and simplified into block S. A
+  // place of G0 matches when its cells group along each axis into runs whose widths sum to S's
+  // cell widths within the tolerance (the paper's one-to-many matching; boundaries from elsewhere
+  // may cut an instance) and every cell equals the S cell it falls in.
+  std::vector<WorldBox> manual;
   double toleranceM = 0.01;      // widths that match within this are equal
   // A repeat or split is taken only when it removes at least this many cells. A new block costs a
   // header, three metadata items and a record (about 100 bytes in a PNG) while a cell of a
