@@ -120,10 +120,13 @@ Result<Image> compile(const Hierarchy& h, const CompileOptions& options) {
         if (bounds[i] <= bounds[i - 1])
           return Error{axisWhere + ": cell " + std::to_string(i - 1) + " is narrower than 1 mm"};
       const double tolerance = options.heuristicToleranceM / format::kMetresPerUnit;
-      const int minPixels = tolerance > 0 ? static_cast<int>(std::min<double>(
-                                                format::kMaxMetadataPixels,
-                                                std::ceil(static_cast<double>(bounds.back()) / (512.0 * tolerance))))
-                                          : 1;
+      // An axis of one cell has no boundary the heuristic could misplace: one pixel does.
+      const bool hasBoundaries = bounds.size() > 2;
+      const int minPixels =
+          tolerance > 0 && hasBoundaries
+              ? static_cast<int>(std::min<double>(format::kMaxMetadataPixels,
+                                                  std::ceil(static_cast<double>(bounds.back()) / (512.0 * tolerance))))
+              : 1;
       auto index = buildAxisIndex(bounds, minPixels);
       if (!index) return Error{axisWhere + ": " + index.error().message};
       plans[b].axes[static_cast<std::size_t>(a)] = std::move(*index);
@@ -206,11 +209,13 @@ Result<Image> compile(const Hierarchy& h, const CompileOptions& options) {
   const packer::Rect fileRecord{0, 0, format::kFileRecordPixels, 1};
   packer::Options packOptions;
   packOptions.reserved = std::span<const packer::Rect>(&fileRecord, 1);
-  // Best-area-fit first, then best-short-side-fit where it packs tighter: shared records leave
-  // fewer small rectangles to fill gaps, and the second rule recovers what that costs.
+  // Best-area-fit first, then best-short-side-fit and bottom-left where they pack tighter: shared
+  // records and one-pixel metadata items leave fewer small rectangles to fill gaps, and the other
+  // rules recover what that costs (docs/BENCHMARKS.md, packing).
   const auto search = [&](packer::Options attempt) {
     std::optional<packer::Layout> best;
-    for (packer::Heuristic rule : {packer::Heuristic::BestAreaFit, packer::Heuristic::BestShortSideFit}) {
+    for (packer::Heuristic rule :
+         {packer::Heuristic::BestAreaFit, packer::Heuristic::BestShortSideFit, packer::Heuristic::BottomLeft}) {
       attempt.heuristic = rule;
       if (best) attempt.maxBoundingArea = static_cast<long long>(best->width) * best->height - 1;
       if (auto layout = packer::packSearchWidth(items, options.maxSearchWidth, format::kMaxImageSize, attempt))
