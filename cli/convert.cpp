@@ -105,6 +105,7 @@ int run(const ConvertCliOptions& o) {
   options.solid.toleranceM = o.toleranceM;
   options.solid.angleToleranceDeg = o.angleDeg;
   options.solid.wedges = !o.noWedges;
+  options.solid.pyramids = !o.noWedges;
   options.solid.threads = o.threads;
   options.alignYaw = !o.noAlign;
   options.blocks.automatic = !o.noAutoBlocks;
@@ -205,7 +206,7 @@ void addConvertCommand(CLI::App& app, int& exitCode) {
   cmd->add_flag("--no-auto-blocks", o->noAutoBlocks, "Do not search for repeated blocks");
   cmd->add_flag("--no-axis-order", o->noAxisOrder,
                 "Keep the grid's axes as they are instead of trying the order whose cells compress best");
-  cmd->add_flag("--no-wedges", o->noWedges, "Leave sloped faces to the complementary mesh instead of fitting wedge cells");
+  cmd->add_flag("--no-wedges", o->noWedges, "Leave sloped faces to the complementary mesh instead of fitting wedge and pyramid cells");
   cmd->add_flag("--no-align", o->noAlign,
                 "Convert a building turned about the vertical in the world frame instead of its own (most of it then "
                 "goes to the complementary mesh)");

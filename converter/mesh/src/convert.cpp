@@ -353,6 +353,7 @@ std::string reportJson(const ConvertReport& r) {
                 {"wedge_cells", s.wedgeCells},
                 {"quadric_cells", s.quadricCells},
                 {"sphere_octant_cells", s.sphereOctantCells},
+                {"pyramid_cells", s.pyramidCells},
                 {"winding_evaluations", s.windingEvaluations},
                 {"ambiguous_cells", s.ambiguousCells}}},
       {"surface", {{"area_m2", s.areaM2},

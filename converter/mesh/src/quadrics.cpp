@@ -5,7 +5,8 @@
 // becomes a sub-block of its own that the cells of its box redirect to. A cell stretches the unit
 // shape, so an elliptic quarter fits as well as a circular one. Sphere octants (quarters of domes,
 // equator to pole) are found, bounded and fitted the same way, as SphereOctant or
-// InverseSphereOctant cells or sub-blocks.
+// InverseSphereOctant cells or sub-blocks; so are corner slopes (corner_slopes.cpp finds them), as
+// Pyramid or InversePyramid cells or sub-blocks.
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -34,8 +35,19 @@ double octantArea(double a, double b, double c) {
   return 0.5 * std::numbers::pi * std::pow(mean, 1 / p);
 }
 
-// Corners matched by position, each to one representative: a mesh may repeat a vertex on either
-// side of a seam.
+// Polygon faces are chords of the arc: their area falls short of the arc's by (1 - sin x / x) for
+// a segment of angle 2x, under 0.5 % from 8 segments a quarter on. Less than this share of the
+// arc's area means the faces do not cover it (a hole, a sloped top, a partial arc).
+constexpr double kMinCoverage = 0.95, kMaxCoverage = 1.02;
+
+// Sample points of a quadric cell, as a share of the cell's size from the axis edge along u and
+// v: one well inside the quarter disk (radius 0.49) and one well outside it (radius 1.2).
+constexpr double kInnerSample = 0.35, kOuterSample = 0.85;
+// The same for a pyramid cell, from its corner along all three axes: x' + y' + z' = 0.6 and 1.8.
+constexpr double kPyramidInnerSample = 0.2, kPyramidOuterSample = 0.6;
+
+}  // namespace
+
 std::unordered_map<std::uint32_t, std::uint32_t> weldCorners(const std::vector<dvec3>& p) {
   std::unordered_map<std::uint32_t, std::uint32_t> weld;
   std::vector<std::uint32_t> order(p.size());
@@ -47,17 +59,6 @@ std::unordered_map<std::uint32_t, std::uint32_t> weldCorners(const std::vector<d
     weld[order[i]] = i > 0 && p[order[i]] == p[order[i - 1]] ? weld[order[i - 1]] : order[i];
   return weld;
 }
-
-// Polygon faces are chords of the arc: their area falls short of the arc's by (1 - sin x / x) for
-// a segment of angle 2x, under 0.5 % from 8 segments a quarter on. Less than this share of the
-// arc's area means the faces do not cover it (a hole, a sloped top, a partial arc).
-constexpr double kMinCoverage = 0.95, kMaxCoverage = 1.02;
-
-// Sample points of a quadric cell, as a share of the cell's size from the axis edge along u and
-// v: one well inside the quarter disk (radius 0.49) and one well outside it (radius 1.2).
-constexpr double kInnerSample = 0.35, kOuterSample = 0.85;
-
-}  // namespace
 
 // Slope faces (normal perpendicular to one axis e) are joined into pieces: connected through
 // shared corners, same axis, normals in the same quadrant of (u, v). A piece whose corners and
@@ -256,7 +257,7 @@ namespace {
 bool solidInPiece(const QuadricPiece& q, std::int8_t layer, const dvec3& x, double slack = 0) {
   const SolidGroup group = solidGroup(Solid{static_cast<std::uint8_t>(layer)});
   if (group == SolidGroup::Box) return true;
-  const double widened = slack / q.reach();
+  const double widened = q.planar ? slack * q.rhoPerMetre() : slack / q.reach();
   return convexQuadric(group) ? q.rho(x) <= 1 + widened : q.rho(x) >= 1 - widened;
 }
 
@@ -270,10 +271,13 @@ bool solidInPiece(const QuadricPiece& q, std::int8_t layer, const dvec3& x, doub
 // when the box holds nothing but what S shows (subBlockFits). A piece with a layer empty at both
 // points, whose box a boundary merged away, or that S cannot show is left to the complementary
 // mesh whole. A sphere octant is one layer, its points taken along e as well: one SphereOctant or
-// InverseSphereOctant cell, or S of one cell. Returns whether every piece was shown.
+// InverseSphereOctant cell, or S of one cell; a corner slope likewise, its points either side of
+// its plane: one Pyramid (the centre's side solid) or InversePyramid cell, or S of one cell.
+// Returns whether every piece was shown.
 bool Builder::fitQuadrics(const LazyWinding& winding) {
   bool all = true;
   stats.quadricsAsCells = stats.quadricsAsSubBlocks = stats.sphereOctantsAsCells = 0;
+  stats.cornerSlopesAsCells = stats.cornerSlopesAsSubBlocks = 0;
   subPiece.assign(shape.size(), -1);
   for (std::size_t id = 0; id < quadrics.size(); ++id) {
     QuadricPiece& q = quadrics[id];
@@ -302,18 +306,20 @@ bool Builder::fitQuadrics(const LazyWinding& winding) {
               snappedWithin(vb, vHi, tol) && snappedWithin(ea, q.e0, tol) && snappedWithin(eb, q.e1, tol);
     q.subBlock = cellsAlong(u) > 1 || cellsAlong(v) > 1 || (q.octant() && cellsAlong(e) > 1);
     // A quarter cylinder: the box's edge on the axis, u = 1 (corner bit 0) when the arc lies below
-    // the axis along u. A sphere octant (e = z): the box's corner at the centre.
+    // the axis along u. A sphere octant or corner slope (e = z): the box's corner at the centre.
     const int orientation = q.octant() ? (q.quadrant[0] < 0 ? 1 : 0) + (q.quadrant[1] < 0 ? 2 : 0) + (q.eSign < 0 ? 4 : 0)
                                        : e * 4 + (q.quadrant[0] < 0 ? 1 : 0) + (q.quadrant[1] < 0 ? 2 : 0);
-    const SolidGroup convex = q.octant() ? SolidGroup::SphereOctant : SolidGroup::QuarterCylinder;
-    const SolidGroup concave = q.octant() ? SolidGroup::InverseSphereOctant : SolidGroup::InverseQuarterCylinder;
+    const SolidGroup convex = q.planar ? SolidGroup::Pyramid : q.octant() ? SolidGroup::SphereOctant : SolidGroup::QuarterCylinder;
+    const SolidGroup concave = q.planar   ? SolidGroup::InversePyramid
+                               : q.octant() ? SolidGroup::InverseSphereOctant
+                                            : SolidGroup::InverseQuarterCylinder;
     const double axisU = q.quadrant[0] > 0 ? ua : ub, axisV = q.quadrant[1] > 0 ? va : vb, axisE = q.eSign > 0 ? ea : eb;
     q.layers.clear();
     const int layerCount = q.octant() ? 1 : cellsAlong(e);
     for (int k = 0; ok && k < layerCount; ++k) {
       std::array<bool, 2> in{};
       for (int h = 0; h < 2; ++h) {
-        const double share = h == 0 ? kInnerSample : kOuterSample;
+        const double share = q.planar ? (h == 0 ? kPyramidInnerSample : kPyramidOuterSample) : h == 0 ? kInnerSample : kOuterSample;
         dvec3 x;
         const int layer = q.lo[static_cast<std::size_t>(e)] + k;
         x[e] = q.octant() ? axisE + q.eSign * share * (eb - ea) : 0.5 * (E[static_cast<std::size_t>(layer)] + E[static_cast<std::size_t>(layer + 1)]);
@@ -331,8 +337,9 @@ bool Builder::fitQuadrics(const LazyWinding& winding) {
       all = false;
       continue;
     }
-    // The curved face's share goes to the cell where the surface's middle is, one per layer.
-    const double middle = q.octant() ? 1 / std::numbers::sqrt3 : std::numbers::sqrt2 / 2;
+    // The curved face's share goes to the cell where the surface's middle is, one per layer (a
+    // corner slope's: its centroid).
+    const double middle = q.planar ? 1.0 / 3 : q.octant() ? 1 / std::numbers::sqrt3 : std::numbers::sqrt2 / 2;
     std::array<int, 3> arcCell{};
     arcCell[static_cast<std::size_t>(u)] = cellOf(U, q.centre.x + q.quadrant[0] * q.radius.x * middle);
     arcCell[static_cast<std::size_t>(v)] = cellOf(V, q.centre.y + q.quadrant[1] * q.radius.y * middle);
@@ -352,7 +359,10 @@ bool Builder::fitQuadrics(const LazyWinding& winding) {
       const double length = q.octant() ? q.e1 - q.e0 : E[static_cast<std::size_t>(k + 1)] - E[static_cast<std::size_t>(k)];
       wedgeShares.push_back({index(arcCell), q.material, 6, q.area * length / (q.e1 - q.e0)});
     }
-    if (q.octant()) {
+    if (q.planar) {
+      ++stats.cornerSlopesAsCells;
+      stats.cornerSlopesAsSubBlocks += q.subBlock;
+    } else if (q.octant()) {
       ++stats.sphereOctantsAsCells;
     } else {
       ++stats.quadricsAsCells;
@@ -364,8 +374,8 @@ bool Builder::fitQuadrics(const LazyWinding& winding) {
 
 // Whether S can stand for every cell of the piece's box: no other face reaches into the box (a
 // window recess or a sill beside a round corner), and the winding number agrees with S at points
-// of every cell (a 3 x 3 lattice across the axis, at mid-layer; 3 x 3 x 3 for an octant) away
-// from the arc.
+// of every cell (a 3 x 3 lattice across the axis, at mid-layer; 3 x 3 x 3 for an octant or a
+// corner slope) away from the arc.
 bool Builder::subBlockFits(int piece, const LazyWinding& winding) const {
   const QuadricPiece& q = quadrics[static_cast<std::size_t>(piece)];
   const int e = q.e, u = kU[e], v = kV[e];
@@ -395,7 +405,8 @@ bool Builder::subBlockFits(int piece, const LazyWinding& winding) const {
           x[u] = U[static_cast<std::size_t>(i)] + su * (U[static_cast<std::size_t>(i + 1)] - U[static_cast<std::size_t>(i)]);
           x[v] = V[static_cast<std::size_t>(j)] + sv * (V[static_cast<std::size_t>(j + 1)] - V[static_cast<std::size_t>(j)]);
           const double smallest = std::min({q.radius.x, q.radius.y, q.octant() ? q.e1 - q.e0 : q.radius.x});
-          if (std::abs(q.rho(x) - 1) * smallest < margin) continue;
+          const double away = q.planar ? std::abs(q.rho(x) - 1) / q.rhoPerMetre() : std::abs(q.rho(x) - 1) * smallest;
+          if (away < margin) continue;
           const std::int8_t layer = q.layers[q.layerOf(k)];
           if ((std::abs(winding(x + origin)) >= kInside) != solidInPiece(q, layer, x)) return false;
         }
@@ -415,6 +426,7 @@ int Builder::arcSide(const QuadricPiece& q, const std::array<int, 3>& cell) cons
   const auto [vNear, vFar] = span(v, q.centre.y, q.radius.y);
   // A quarter cylinder's cells span no distance along e.
   const auto [eNear, eFar] = q.octant() ? span(q.e, q.eSign > 0 ? q.e0 : q.e1, q.e1 - q.e0) : std::pair(0.0, 0.0);
+  if (q.planar) return uFar + vFar + eFar <= 1 ? -1 : uNear + vNear + eNear >= 1 ? 1 : 0;
   if (std::hypot(uFar, vFar, eFar) <= 1) return -1;
   if (std::hypot(uNear, vNear, eNear) >= 1) return 1;
   return 0;

@@ -1,8 +1,9 @@
 // converter/mesh/src/solid_builder.hpp — what the steps of solid conversion share (solid.hpp
 // describes the steps): the per-face and per-slope records, the grid helpers, and Builder, which
 // holds the state; solid_grid.cpp (planes, slopes, boundaries, the driver), solid_occupancy.cpp
-// (occupancy, wedges, trimming), quadrics.cpp (quarter cylinders, sphere octants) and solid_materials.cpp
-// (materials, complementary mesh) implement it.
+// (occupancy, wedges, trimming), quadrics.cpp (quarter cylinders, sphere octants, and fitting
+// every such piece to cells or a sub-block), corner_slopes.cpp (corner slopes as pyramids) and
+// solid_materials.cpp (materials, complementary mesh) implement it.
 #pragma once
 
 #include <algorithm>
@@ -13,6 +14,7 @@
 #include <mutex>
 #include <optional>
 #include <span>
+#include <unordered_map>
 #include <vector>
 
 #include <glm/vec2.hpp>
@@ -42,10 +44,16 @@ constexpr double kConflictShareForRebuild = 0.001;
 // Builds of the grid at most (see buildSolidGrid).
 constexpr int kAttempts = 3;
 constexpr std::size_t kMaxSlopeBoundariesPerAxis = 128;
-// Slopes with less than this share of the mesh's area are left to the complementary mesh.
+// Slopes (and corner slopes) with less than this share of the mesh's area are left to the
+// complementary mesh.
 constexpr double kMinSlopeShare = 0.002;
 // fitWedges gives a slope up once this many more of its cells failed than became wedges.
 constexpr int kWedgeGiveUp = 16;
+// A hip or valley is cut into this many steps at most, each at least kCreaseMinStep tolerances
+// long along e and across it (findCreasePoints, solid_grid.cpp): its crease cells then hold about
+// a quarter of the surface of the box around it, and it adds at most three boundaries per axis.
+constexpr int kCreaseSteps = 4;
+constexpr double kCreaseMinStep = 8;
 // trimCutCells samples a cut cell at its corners, this far inside (a share of the cell's size):
 // on the cell's own faces the winding number of a face lying there would be ambiguous.
 constexpr double kCornerInset = 0.02;
@@ -75,8 +83,16 @@ struct SlopePlane {
   std::uint16_t material = 0;
   std::vector<std::uint32_t> faces;
   bool represented = true;
-  // Cells (u cell, e cell; e cell -1 for all) where fitWedges could not make a wedge.
+  // Cells (u cell, e cell; e cell -1 for all) where fitWedges could not make a wedge: the
+  // plane's faces over them go to the complementary mesh whole.
   std::vector<std::pair<int, int>> failed;
+  // Cells (u cell, e cell) that the plane's faces cover only partly (its outline cuts through
+  // them: a hip, a valley): no wedge, and only the faces' parts over them go to the mesh.
+  std::vector<std::pair<int, int>> partial;
+  // Points along the hips and valleys it shares with slopes along other axes, a few per edge:
+  // closeSlopes makes them boundaries, so that the cells such an edge cuts are one small cell per
+  // step along it (findCreasePoints, solid_grid.cpp).
+  std::vector<dvec3> creasePoints;
 
   dvec2 point(double s) const { return offset * n + s * dvec2(-n.y, n.x); }
   double vAt(double u) const { return (offset - n.x * u) / n.y; }
@@ -95,7 +111,9 @@ struct SlopePlane {
 // sub-block S of its own (one cell across, G0's layers along e) and every cell of its box in G0
 // redirects to S. A sphere-octant piece (a quarter of a dome, e = z) is the same with a centre
 // and radius along e as well: its box becomes one SphereOctant or InverseSphereOctant cell, or S
-// of one cell that every cell of the box redirects to.
+// of one cell that every cell of the box redirects to. A corner slope (corner_slopes.cpp, planar)
+// is fitted like a sphere octant: its surface is the triangle through the three box corners next
+// to the centre, and its box becomes one Pyramid or InversePyramid cell, or S of one cell.
 struct QuadricPiece {
   int e = 0;                      // axis; (u, v) = (kU[e], kV[e])
   dvec2 centre{0.0};              // the axis in (u, v)
@@ -105,6 +123,8 @@ struct QuadricPiece {
   // A sphere octant's direction (+1 or -1) from its centre to its pole along e, the centre being
   // at e0 or e1 and the radius e1 - e0; 0 for a quarter cylinder.
   int eSign = 0;
+  // A corner slope: the plane through the box corners next to the centre (eSign != 0 too).
+  bool planar = false;
   double area = 0;
   std::uint16_t material = 0;
   std::vector<std::uint32_t> faces;
@@ -116,18 +136,30 @@ struct QuadricPiece {
   bool octant() const { return eSign != 0; }
   // The largest radius: rho's error times this is a distance.
   double reach() const { return std::max({radius.x, radius.y, octant() ? e1 - e0 : 0.0}); }
-  // Distance of x (grid frame) from the axis or centre, in units of the radius: 1 on the surface.
+  // Distance of x (grid frame) from the axis or centre, in units of the radius: 1 on the surface
+  // (a corner slope: the sum of the distances along the axes, each in units of the box's size).
   double rho(const dvec3& x) const {
     const double du = (x[kU[e]] - centre.x) / radius.x, dv = (x[kV[e]] - centre.y) / radius.y;
     const double de = octant() ? (x[e] - (eSign > 0 ? e0 : e1)) / (e1 - e0) : 0.0;
+    if (planar) return std::abs(du) + std::abs(dv) + std::abs(de);
     return std::sqrt(du * du + dv * dv + de * de);
+  }
+  // A corner slope's rho per metre across its plane (the length of rho's gradient).
+  double rhoPerMetre() const {
+    return std::sqrt(1 / (radius.x * radius.x) + 1 / (radius.y * radius.y) + 1 / ((e1 - e0) * (e1 - e0)));
   }
   // Index into layers of the box's layer k along e.
   std::size_t layerOf(int k) const { return octant() ? 0 : static_cast<std::size_t>(k - lo[static_cast<std::size_t>(e)]); }
 };
 
-// Whether a quadric group is solid on the axis's or centre's side of its surface.
-inline bool convexQuadric(SolidGroup g) { return g == SolidGroup::QuarterCylinder || g == SolidGroup::SphereOctant; }
+// Whether a quadric (or pyramid) group is solid on the axis's or centre's side of its surface.
+inline bool convexQuadric(SolidGroup g) {
+  return g == SolidGroup::QuarterCylinder || g == SolidGroup::SphereOctant || g == SolidGroup::Pyramid;
+}
+
+// Corners matched by position, each to one representative: a mesh may repeat a vertex on either
+// side of a seam (quadrics.cpp).
+std::unordered_map<std::uint32_t, std::uint32_t> weldCorners(const std::vector<dvec3>& p);
 
 // Boundary helpers (solid_grid.cpp). Boundaries are sorted positions, metres from the origin.
 // Index of the last boundary <= x (clamped to a cell index 0..n-1).
@@ -213,6 +245,7 @@ struct Builder {
   void findSlopes();
   void findQuadrics();
   void findSphereOctants();
+  void findCornerSlopes();
   void keepPiece(QuadricPiece piece, std::vector<std::uint32_t> members, const std::vector<double>& materialArea);
   void buildBounds();
   void addQuadricBounds();
@@ -229,6 +262,14 @@ struct Builder {
   int arcSide(const QuadricPiece& q, const std::array<int, 3>& cell) const;
   void trimCutCells(const LazyWinding& winding);
   bool shownByMesh(std::uint32_t face) const;
+  // The parts of slope face f over cells its plane covers only partly (SlopePlane::partial),
+  // which the complementary mesh shows: convex polygons in the grid frame (solid_occupancy.cpp).
+  struct MeshPiece {
+    std::array<dvec3, 12> p;
+    int n = 0;
+    double area = 0;
+  };
+  std::vector<MeshPiece> partialPieces(std::uint32_t face) const;
   struct Share {
     std::size_t cell;
     std::uint16_t material;

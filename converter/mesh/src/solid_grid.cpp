@@ -5,7 +5,9 @@
 #include <limits>
 #include <numbers>
 #include <numeric>
+#include <optional>
 #include <string>
+#include <tuple>
 
 #include <glm/geometric.hpp>
 
@@ -123,6 +125,51 @@ std::vector<double> mergePositions(std::vector<std::pair<double, double>> candid
   return tidy(std::move(out), size);
 }
 
+// The slopes' crease points (SlopePlane::creasePoints). A crease is an edge that a face of one
+// slope shares with a face of a slope along another axis (matched by position) and that runs
+// diagonally across the first slope's (s, e) coordinates, beyond the tolerance both ways: a hip
+// (solid = y' <= min of the two planes) or a valley (max). The cells such an edge passes through
+// are covered by each plane only partly, so fitWedges cannot make them wedges of either. Points
+// that cut the edge into equal steps (kCreaseSteps at most, each kCreaseMinStep tolerances long at
+// least) become boundaries on all three axes; the edge's ends are the slopes' ends already. Then
+// the crease passes through one small cell per step, a staircase, while the cells beside it are
+// covered whole and become wedges; the slope across the crease has the same edge and points. An
+// edge shared with a slope along the same axis (the diagonal of a quad split into two triangles
+// that are not quite coplanar) or with anything else is no crease.
+void findCreasePoints(std::vector<SlopePlane>& slopes, const std::vector<std::array<dvec3, 3>>& corners, double tol) {
+  using Key = std::array<double, 6>;
+  struct Edge {
+    Key key;
+    std::size_t plane;
+  };
+  std::vector<Edge> edges;
+  for (std::size_t id = 0; id < slopes.size(); ++id)
+    for (const std::uint32_t f : slopes[id].faces)
+      for (int k = 0; k < 3; ++k) {
+        dvec3 a = corners[f][static_cast<std::size_t>(k)], b = corners[f][static_cast<std::size_t>((k + 1) % 3)];
+        if (std::tie(b.x, b.y, b.z) < std::tie(a.x, a.y, a.z)) std::swap(a, b);
+        edges.push_back({{a.x, a.y, a.z, b.x, b.y, b.z}, id});
+      }
+  std::sort(edges.begin(), edges.end(), [](const Edge& x, const Edge& y) { return x.key != y.key ? x.key < y.key : x.plane < y.plane; });
+  for (std::size_t i = 0; i < edges.size();) {
+    std::size_t j = i + 1;
+    while (j < edges.size() && edges[j].key == edges[i].key) ++j;
+    const dvec3 a(edges[i].key[0], edges[i].key[1], edges[i].key[2]), b(edges[i].key[3], edges[i].key[4], edges[i].key[5]);
+    // Exactly two faces, of slopes along different axes.
+    if (j == i + 2 && slopes[edges[i].plane].e != slopes[edges[i + 1].plane].e)
+      for (std::size_t m = i; m < j; ++m) {
+        SlopePlane& plane = slopes[edges[m].plane];
+        const int e = plane.e, u = kU[e], v = kV[e];
+        const dvec2 t(-plane.n.y, plane.n.x);
+        const double ds = glm::dot(t, dvec2(b[u] - a[u], b[v] - a[v])), de = b[e] - a[e];
+        if (std::abs(ds) <= tol || std::abs(de) <= tol) continue;  // along or across the slope
+        const int steps = std::clamp(static_cast<int>(std::min(std::abs(ds), std::abs(de)) / (kCreaseMinStep * tol)), 1, kCreaseSteps);
+        for (int k = 1; k < steps; ++k) plane.creasePoints.push_back(a + (static_cast<double>(k) / steps) * (b - a));
+      }
+    i = j;
+  }
+}
+
 }  // namespace
 
 void Builder::analyseFaces() {
@@ -236,6 +283,11 @@ void Builder::findSlopes() {
     i = j;
   }
   stats.slopes = static_cast<int>(slopes.size());
+  if (slopes.size() < 2) return;
+  std::vector<std::array<dvec3, 3>> corners(faces.size());
+  for (const SlopePlane& plane : slopes)
+    for (const std::uint32_t f : plane.faces) corners[f] = {corner(f, 0), corner(f, 1), corner(f, 2)};
+  findCreasePoints(slopes, corners, tol);
 }
 
 void Builder::buildBounds() {
@@ -255,21 +307,30 @@ void Builder::buildBounds() {
 // Slopes are taken largest first; one whose closure would add more boundaries than it crosses
 // (parallel slopes feed each other: a ramp's top and bottom would cascade across its whole run)
 // or push the grid past the budget is left to the complementary mesh.
+//
+// A slope's crease points (hips, valleys: SlopePlane::creasePoints) are added with it. They lie on
+// the slope, so its own closure adds nothing for them, but they cross the other slopes too: they
+// may add what they add themselves, and where the cascade beyond that is too large, or does not
+// end within the rounds, the slope is closed without them (its cells along the crease are then
+// larger, and more of it goes to the complementary mesh). More boundaries also make it likelier
+// that one lands within the tolerance of a crossing and is merged with it, leaving a column of
+// some slope off its diagonal (fitWedges fails it whole, a stripe of the wrong cells down a turned
+// wall): so the slopes are closed both ways, and the crease points are kept only when they leave
+// no slope rejected and no column off its diagonal that closing without them would not.
 void Builder::closeSlopes() {
   if (slopes.empty()) return;
   const std::array<std::size_t, 3> initial{bounds[0].size(), bounds[1].size(), bounds[2].size()};
   std::vector<std::size_t> order(slopes.size());
   std::iota(order.begin(), order.end(), std::size_t{0});
   std::sort(order.begin(), order.end(), [&](std::size_t x, std::size_t y) { return slopes[x].area > slopes[y].area; });
-  std::vector<std::size_t> accepted;
-  for (std::size_t candidate : order) {
-    SlopePlane& plane = slopes[candidate];
-    if (!plane.represented) continue;  // failed a previous attempt
-    if (plane.area < kMinSlopeShare * stats.areaM2) {
-      plane.represented = false;  // a facet too small to pay for its boundaries
-      continue;
-    }
-    std::array<std::vector<double>, 3> trial = bounds;
+  struct Closure {
+    std::array<std::vector<double>, 3> bounds;
+    std::vector<std::size_t> accepted, rejected;
+    int offDiagonal = 0;  // columns (u cells) of accepted slopes that do not run corner to corner
+  };
+  // The boundaries with one more slope closed, or nothing when that adds too many.
+  const auto close = [&](const Closure& c, const SlopePlane& plane, bool creases) -> std::optional<std::array<std::vector<double>, 3>> {
+    std::array<std::vector<double>, 3> trial = c.bounds;
     const int u = kU[plane.e], v = kV[plane.e];
     insertBoundaries(trial[static_cast<std::size_t>(plane.e)], {plane.e0, plane.e1}, size[plane.e], tol);
     insertBoundaries(trial[static_cast<std::size_t>(u)], {plane.uMin(), plane.uMax()}, size[u], tol);
@@ -278,10 +339,27 @@ void Builder::closeSlopes() {
     std::size_t crossed = 4;
     for (double x : trial[static_cast<std::size_t>(u)]) crossed += x > plane.uMin() + tol && x < plane.uMax() - tol;
     for (double x : trial[static_cast<std::size_t>(v)]) crossed += x > plane.vMin() + tol && x < plane.vMax() - tol;
-    accepted.push_back(candidate);
-    for (int round = 0; round < kSlopeRounds; ++round) {
+    // Crease points, each on all three axes. One that would land near a boundary but not on it
+    // (within half a step: a wall's plane beside the eaves corner, another hip's step) is left
+    // out rather than make a sliver of cells; the boundary there crosses the crease already.
+    std::size_t own = 0;
+    for (const dvec3& q : plane.creasePoints) {
+      bool clear = creases;
+      for (int a = 0; a < 3 && clear; ++a) {
+        const auto& B = trial[static_cast<std::size_t>(a)];
+        const double boundary = B[static_cast<std::size_t>(nearestBoundary(B, q[a]))];
+        clear = snappedWithin(boundary, q[a], tol) || std::abs(boundary - q[a]) >= 0.5 * kCreaseMinStep * tol;
+      }
+      for (int a = 0; a < 3 && clear; ++a) {
+        const std::size_t before = trial[static_cast<std::size_t>(a)].size();
+        insertBoundaries(trial[static_cast<std::size_t>(a)], {q[a]}, size[a], tol);
+        own += trial[static_cast<std::size_t>(a)].size() - before;
+      }
+    }
+    bool converged = false;
+    for (int round = 0; round < kSlopeRounds && !converged; ++round) {
       std::array<std::vector<double>, 3> added;
-      for (std::size_t id : accepted) {
+      for (std::size_t id : c.accepted) {
         const SlopePlane& sp = slopes[id];
         const int su = kU[sp.e], sv = kV[sp.e];
         for (double bu : trial[static_cast<std::size_t>(su)])
@@ -295,21 +373,57 @@ void Builder::closeSlopes() {
         insertBoundaries(trial[static_cast<std::size_t>(a)], std::move(added[static_cast<std::size_t>(a)]), size[a], tol);
         any = any || trial[static_cast<std::size_t>(a)].size() > before;
       }
-      if (!any) break;
+      converged = !any;
     }
     std::size_t growth = 0;
     bool withinBudget = true;
     for (int a = 0; a < 3; ++a) {
-      growth += trial[static_cast<std::size_t>(a)].size() - bounds[static_cast<std::size_t>(a)].size();
+      growth += trial[static_cast<std::size_t>(a)].size() - c.bounds[static_cast<std::size_t>(a)].size();
       withinBudget = withinBudget && trial[static_cast<std::size_t>(a)].size() <= initial[static_cast<std::size_t>(a)] + kMaxSlopeBoundariesPerAxis;
     }
-    if (growth > 2 * crossed + 8 || !withinBudget) {
-      accepted.pop_back();
-      plane.represented = false;
-      continue;
+    if (growth > 2 * crossed + 8 + own || !withinBudget || (own > 0 && !converged)) return std::nullopt;
+    return trial;
+  };
+  const auto closeAll = [&](bool creases) {
+    Closure c;
+    c.bounds = bounds;
+    for (std::size_t candidate : order) {
+      const SlopePlane& plane = slopes[candidate];
+      if (!plane.represented) continue;  // failed a previous attempt
+      if (plane.area < kMinSlopeShare * stats.areaM2) {
+        c.rejected.push_back(candidate);  // a facet too small to pay for its boundaries
+        continue;
+      }
+      c.accepted.push_back(candidate);
+      auto trial = creases && !plane.creasePoints.empty() ? close(c, plane, true) : std::nullopt;
+      if (!trial) trial = close(c, plane, false);
+      if (!trial) {
+        c.accepted.pop_back();
+        c.rejected.push_back(candidate);
+        continue;
+      }
+      c.bounds = std::move(*trial);
     }
-    bounds = std::move(trial);
+    for (const std::size_t id : c.accepted) {
+      const SlopePlane& sp = slopes[id];
+      const auto& U = c.bounds[static_cast<std::size_t>(kU[sp.e])];
+      const auto& V = c.bounds[static_cast<std::size_t>(kV[sp.e])];
+      for (int i = cellOf(U, sp.uMin() + tol); i <= cellOf(U, sp.uMax() - tol); ++i) {
+        const double va = sp.vAt(U[static_cast<std::size_t>(i)]), vb = sp.vAt(U[static_cast<std::size_t>(i + 1)]);
+        const int j = nearestBoundary(V, std::min(va, vb));
+        c.offDiagonal += j + 1 >= static_cast<int>(V.size()) || std::abs(V[static_cast<std::size_t>(j)] - std::min(va, vb)) > tol ||
+                         std::abs(V[static_cast<std::size_t>(j + 1)] - std::max(va, vb)) > tol;
+      }
+    }
+    return c;
+  };
+  Closure chosen = closeAll(false);
+  if (std::any_of(slopes.begin(), slopes.end(), [](const SlopePlane& sp) { return sp.represented && !sp.creasePoints.empty(); })) {
+    Closure creased = closeAll(true);
+    if (creased.rejected.size() <= chosen.rejected.size() && creased.offDiagonal <= chosen.offDiagonal) chosen = std::move(creased);
   }
+  for (const std::size_t id : chosen.rejected) slopes[id].represented = false;
+  bounds = std::move(chosen.bounds);
   for (int a = 0; a < 3; ++a)
     stats.slopeBoundaries += static_cast<long long>(bounds[static_cast<std::size_t>(a)].size() - initial[static_cast<std::size_t>(a)]);
 }
@@ -343,17 +457,19 @@ Result<SolidGrid> buildSolidGrid(const Mesh& mesh, const SolidOptions& options) 
   builder.analyseFaces();
   builder.findQuadrics();  // before slopes: a quarter cylinder's faces are sloped too
   builder.findSphereOctants();  // a dome's faces near its quarters' seams may be sloped too
+  builder.findCornerSlopes();   // planar faces sloped along three axes, the domes' taken
   builder.findSlopes();
   const LazyWinding winding(mesh);
   // The grid is built again (at most kAttempts times in all) when a slope did not come out as
-  // wedges or a quarter-round piece as quadric cells (its boundaries were added for nothing) or
-  // cells show faces of different materials
-  // (materialConflicts adds the boundaries that separate them).
+  // wedges or a quarter-round piece, sphere octant or corner slope as its cells (its boundaries
+  // were added for nothing) or cells show faces of different materials (materialConflicts adds
+  // the boundaries that separate them).
   SolidGrid out;
   std::vector<Builder::Share> shares;
   for (int attempt = 0; attempt < kAttempts; ++attempt) {
     builder.buildBounds();
     builder.addQuadricBounds();
+    builder.stats.slopeBoundaries = 0;  // closeSlopes counts this attempt's
     builder.closeSlopes();
     std::size_t cells = 1;
     for (int a = 0; a < 3; ++a) {
@@ -372,7 +488,6 @@ Result<SolidGrid> buildSolidGrid(const Mesh& mesh, const SolidOptions& options) 
     builder.stats.occupancySeconds += lap();
     builder.stats.slopesAsWedges = 0;
     builder.stats.trimmedCells = 0;
-    builder.stats.slopeBoundaries = 0;
     bool again = !builder.fitWedges(winding);
     again = !builder.fitQuadrics(winding) || again;
     builder.trimCutCells(winding);

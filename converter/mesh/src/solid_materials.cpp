@@ -74,7 +74,15 @@ std::vector<Builder::Share> Builder::computeShares(Mesh& complementOut, SolidSta
         continue;
       }
       if (face.kind == FaceKind::Slope || face.kind == FaceKind::Quadric) {
-        out.nut += face.area;
+        // A slope face's parts over cells its plane covers only partly go to the mesh.
+        double meshArea = 0;
+        if (face.kind == FaceKind::Slope)
+          for (const MeshPiece& piece : partialPieces(f)) {
+            addComplementPolygon(piece.p.data(), piece.n, material);
+            meshArea += piece.area;
+          }
+        out.complementArea += meshArea;
+        out.nut += face.area - meshArea;
         continue;
       }
       const int a = face.axis, u = (a + 1) % 3, v = (a + 2) % 3;
@@ -242,10 +250,10 @@ std::array<std::vector<double>, 3> Builder::materialConflicts(const std::vector<
 }
 
 // Each cell takes the material of largest area among its shares. A quarter-round piece shown by
-// a sub-block becomes S: one cell across, its box's layers along e (a sphere octant: one cell,
-// which its box's cells redirect to offset along e too), each layer taking the material
-// of largest area over the shares of its box's cells in G0; those cells redirect to S, offset by
-// minus their place in S so that each shows its part of S (clipped by the cell).
+// a sub-block becomes S: one cell across, its box's layers along e (a sphere octant or a corner
+// slope: one cell, which its box's cells redirect to offset along e too), each layer taking the
+// material of largest area over the shares of its box's cells in G0; those cells redirect to S,
+// offset by minus their place in S so that each shows its part of S (clipped by the cell).
 void Builder::assignMaterials(Block& block, std::vector<Block>& subBlocks, const std::vector<Share>& shares) {
   block.cells.assign(shape.size(), Cell::empty());
   std::vector<std::uint16_t> chosen(hint);
@@ -298,7 +306,7 @@ void Builder::assignMaterials(Block& block, std::vector<Block>& subBlocks, const
           s.boundsM[static_cast<std::size_t>(a)].push_back(snapToUnits(B[static_cast<std::size_t>(k)] - base));
     }
     s.cells = layers;
-    for (const Cell& c : layers) (q.octant() ? stats.sphereOctantCells : stats.quadricCells) += c.solid.index != 0;
+    for (const Cell& c : layers) (q.planar ? stats.pyramidCells : q.octant() ? stats.sphereOctantCells : stats.quadricCells) += c.solid.index != 0;
     stats.solidCells += static_cast<long long>(layers.size());
     subBlocks.push_back(std::move(s));
     const auto firstRecord = static_cast<std::ptrdiff_t>(block.redirections.size());
@@ -335,6 +343,7 @@ void Builder::assignMaterials(Block& block, std::vector<Block>& subBlocks, const
     stats.wedgeCells += group == SolidGroup::Wedge;
     stats.quadricCells += group == SolidGroup::QuarterCylinder || group == SolidGroup::InverseQuarterCylinder;
     stats.sphereOctantCells += group == SolidGroup::SphereOctant || group == SolidGroup::InverseSphereOctant;
+    stats.pyramidCells += group == SolidGroup::Pyramid || group == SolidGroup::InversePyramid;
   }
 }
 

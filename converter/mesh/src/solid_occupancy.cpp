@@ -194,7 +194,16 @@ void Builder::classify(const LazyWinding& winding) {
 
 // Cells a slope runs through corner to corner become wedges (or stay boxes / empty when both
 // halves are solid / empty); a slope shown entirely by wedges leaves the complementary mesh.
-// Returns whether every slope closeSlopes accepted came out as wedges.
+// A cell becomes a wedge of a plane only where the plane's faces cover its whole extent in (u, e)
+// (its cross-section along the free axis v): where the plane's outline cuts through the cell
+// diagonally (a hip, a valley, the slanted side of a triangular slope), the surface there is
+// partly another plane's, with a crease (solid = y' <= min or max of two planes) that no solid
+// has, and a wedge of either plane would fill or cut away the other's part. Such a cell is left as
+// the occupancy step classified it and counts as failed; its part of each face goes to the
+// complementary mesh (partialPieces), and trimCutCells keeps the cell solid only if it is inside
+// all over. Cells the faces do not reach at all (the rest of the plane's bounding box: beyond a
+// hip, a chimney's hole) are none of the plane's business. Returns whether every slope
+// closeSlopes accepted came out as wedges.
 bool Builder::fitWedges(const LazyWinding& winding) {
   bool all = true;
   wedgeShares.clear();
@@ -206,8 +215,39 @@ bool Builder::fitWedges(const LazyWinding& winding) {
     const auto& E = bounds[static_cast<std::size_t>(e)];
     const int i0 = cellOf(U, plane.uMin() + tol), i1 = cellOf(U, plane.uMax() - tol);
     const int k0 = cellOf(E, plane.e0 + tol), k1 = cellOf(E, plane.e1 - tol);
+    // How much of each cell (u, e) of that range the plane's faces cover, projected onto (u, e).
+    const int nk = std::max(k1 - k0 + 1, 0);
+    std::vector<double> cover(static_cast<std::size_t>(std::max(i1 - i0 + 1, 0) * nk), 0.0);
+    for (const std::uint32_t f : plane.faces) {
+      Polygon2 tri;
+      tri.n = 3;
+      for (int c = 0; c < 3; ++c) tri.p[static_cast<std::size_t>(c)] = dvec2(corner(f, c)[u], corner(f, c)[e]);
+      const auto lowest = [&](int axis) { return std::min({tri.p[0][axis], tri.p[1][axis], tri.p[2][axis]}); };
+      const auto highest = [&](int axis) { return std::max({tri.p[0][axis], tri.p[1][axis], tri.p[2][axis]}); };
+      const int a0 = std::max(i0, cellOf(U, lowest(0))), a1 = std::min(i1, cellOf(U, highest(0)));
+      const int b0 = std::max(k0, cellOf(E, lowest(1))), b1 = std::min(k1, cellOf(E, highest(1)));
+      for (int i = a0; i <= a1; ++i) {
+        Polygon2 strip = tri;
+        clipAxis(strip, 0, U[static_cast<std::size_t>(i)], false);
+        clipAxis(strip, 0, U[static_cast<std::size_t>(i + 1)], true);
+        for (int k = b0; k <= b1 && strip.n >= 3; ++k) {
+          Polygon2 piece = strip;
+          clipAxis(piece, 1, E[static_cast<std::size_t>(k)], false);
+          clipAxis(piece, 1, E[static_cast<std::size_t>(k + 1)], true);
+          if (piece.n >= 3) cover[static_cast<std::size_t>((i - i0) * nk + (k - k0))] += polygonArea(piece);
+        }
+      }
+    }
+    // 1: covered whole (but for strips within the tolerance of its sides), 0: not at all, -1: partly.
+    const auto coverage = [&](int i, int k) {
+      const double du = U[static_cast<std::size_t>(i + 1)] - U[static_cast<std::size_t>(i)];
+      const double de = E[static_cast<std::size_t>(k + 1)] - E[static_cast<std::size_t>(k)];
+      const double c = cover[static_cast<std::size_t>((i - i0) * nk + (k - k0))], slack = tol * (du + de);
+      return du * de - c <= slack ? 1 : c <= slack ? 0 : -1;
+    };
     int good = 0, bad = 0;
     plane.failed.clear();
+    plane.partial.clear();
     for (int i = i0; i <= i1 && bad <= good + kWedgeGiveUp; ++i) {
       const double ua = U[static_cast<std::size_t>(i)], ub = U[static_cast<std::size_t>(i + 1)];
       const double va = plane.vAt(ua), vb = plane.vAt(ub);
@@ -215,6 +255,9 @@ bool Builder::fitWedges(const LazyWinding& winding) {
       if (ua < plane.uMin() - tol || ub > plane.uMax() + tol || j + 1 >= static_cast<int>(V.size()) ||
           std::abs(V[static_cast<std::size_t>(j)] - std::min(va, vb)) > tol ||
           std::abs(V[static_cast<std::size_t>(j + 1)] - std::max(va, vb)) > tol) {
+        bool reached = false;
+        for (int k = k0; k <= k1 && !reached; ++k) reached = coverage(i, k) != 0;
+        if (!reached) continue;
         // Cut off the diagonal: centre classification stands, for every cell along e.
         plane.failed.push_back({i, -1});
         bad += k1 - k0 + 1;
@@ -230,6 +273,13 @@ bool Builder::fitWedges(const LazyWinding& winding) {
         if (ea < plane.e0 - tol || eb > plane.e1 + tol) {
           plane.failed.push_back({i, k});
           ++bad;
+          continue;
+        }
+        if (const int covered = coverage(i, k); covered <= 0) {
+          if (covered < 0) {
+            plane.partial.push_back({i, k});
+            ++bad;
+          }
           continue;
         }
         std::array<bool, 2> in{};
@@ -274,6 +324,54 @@ bool Builder::fitWedges(const LazyWinding& winding) {
     all = all && plane.represented;
   }
   return all;
+}
+
+std::vector<Builder::MeshPiece> Builder::partialPieces(std::uint32_t f) const {
+  std::vector<MeshPiece> out;
+  const Face& face = faces[f];
+  if (face.kind != FaceKind::Slope || face.area <= 0) return out;
+  const SlopePlane& plane = slopes[static_cast<std::size_t>(face.group)];
+  if (!plane.represented || plane.partial.empty()) return out;
+  const int e = plane.e, u = kU[e], v = kV[e];
+  const auto& U = bounds[static_cast<std::size_t>(u)];
+  const auto& E = bounds[static_cast<std::size_t>(e)];
+  const dvec3 P[3] = {corner(f, 0), corner(f, 1), corner(f, 2)};
+  Polygon2 tri;
+  tri.n = 3;
+  for (std::size_t c = 0; c < 3; ++c) tri.p[c] = dvec2(P[c][u], P[c][e]);
+  const double projected = polygonArea(tri);
+  if (projected <= 0) return out;
+  const double uLo = std::min({P[0][u], P[1][u], P[2][u]}), uHi = std::max({P[0][u], P[1][u], P[2][u]});
+  const double eLo = std::min({P[0][e], P[1][e], P[2][e]}), eHi = std::max({P[0][e], P[1][e], P[2][e]});
+  // The face's own plane lifts the pieces back to 3D (its normal is off v by more than the angle tolerance).
+  const dvec3 normal = face.areaVector / face.area;
+  const double d = glm::dot(normal, P[0]);
+  for (const auto& [i, k] : plane.partial) {
+    const double ua = U[static_cast<std::size_t>(i)], ub = U[static_cast<std::size_t>(i + 1)];
+    const double ea = E[static_cast<std::size_t>(k)], eb = E[static_cast<std::size_t>(k + 1)];
+    if (ub <= uLo || ua >= uHi || eb <= eLo || ea >= eHi) continue;
+    Polygon2 piece = tri;
+    clipAxis(piece, 0, ua, false);
+    clipAxis(piece, 0, ub, true);
+    clipAxis(piece, 1, ea, false);
+    clipAxis(piece, 1, eb, true);
+    MeshPiece m;
+    m.area = polygonArea(piece) / projected * face.area;
+    if (piece.n < 3 || m.area <= kMinPieceAreaM2) continue;  // a clipping sliver
+    for (int c = 0; c < piece.n; ++c) {
+      // A corner on a cell's side comes out of clipping twice, or nearly: once is enough.
+      const dvec2 at = piece.p[static_cast<std::size_t>(c)];
+      const dvec3& last = m.p[static_cast<std::size_t>(std::max(m.n - 1, 0))];
+      if (m.n > 0 && glm::length(at - dvec2(last[u], last[e])) <= 1e-9) continue;
+      dvec3& q = m.p[static_cast<std::size_t>(m.n++)];
+      q[u] = at.x;
+      q[e] = at.y;
+      q[v] = (d - normal[u] * q[u] - normal[e] * q[e]) / normal[v];
+    }
+    while (m.n > 1 && glm::length(m.p[static_cast<std::size_t>(m.n - 1)] - m.p[0]) <= 1e-9) --m.n;
+    if (m.n >= 3) out.push_back(m);
+  }
+  return out;
 }
 
 // Whether the complementary mesh shows face f whole: it is neither axis-aligned nor part of a
@@ -321,9 +419,7 @@ bool triangleOverlapsBox(dvec3 a, dvec3 b, dvec3 c, const dvec3& centre, const d
 void Builder::trimCutCells(const LazyWinding& winding) {
   std::vector<std::uint8_t> cut(shape.size(), 0);
   bool any = false;
-  for (std::uint32_t f = 0; f < faces.size(); ++f) {
-    if (faces[f].area <= 0 || !shownByMesh(f)) continue;
-    const dvec3 a = corner(f, 0), b = corner(f, 1), c = corner(f, 2);
+  const auto markCut = [&](const dvec3& a, const dvec3& b, const dvec3& c) {
     std::array<int, 3> lo{}, hi{};
     for (int ax = 0; ax < 3; ++ax) {
       const auto& B = bounds[static_cast<std::size_t>(ax)];
@@ -344,6 +440,17 @@ void Builder::trimCutCells(const LazyWinding& winding) {
             any = true;
           }
         }
+  };
+  for (std::uint32_t f = 0; f < faces.size(); ++f) {
+    if (faces[f].area <= 0) continue;
+    if (shownByMesh(f)) {
+      markCut(corner(f, 0), corner(f, 1), corner(f, 2));
+      continue;
+    }
+    // A slope face's parts over cells its plane covers only partly (a hip's crease).
+    for (const MeshPiece& piece : partialPieces(f))
+      for (int m = 1; m + 1 < piece.n; ++m)
+        markCut(piece.p[0], piece.p[static_cast<std::size_t>(m)], piece.p[static_cast<std::size_t>(m + 1)]);
   }
   if (!any) return;
   for (int z = 0; z < n[2]; ++z)

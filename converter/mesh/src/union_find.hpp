@@ -1,5 +1,6 @@
 // Disjoint sets over 0..n-1 with path halving: the converter's grouping of faces into pieces
-// (mesh checks) and into quarter-round candidates (quadrics).
+// (mesh checks) and into quarter-round, sphere-octant and corner-slope candidates (quadrics.cpp,
+// corner_slopes.cpp).
 #pragma once
 
 #include <cstddef>

@@ -1,6 +1,6 @@
 // converter/solid.hpp — solid conversion (paper section 5, first step): a triangle mesh becomes
-// one non-uniform grid G0 of empty, box, wedge, quarter-cylinder and sphere-octant cells, plus the complementary mesh of the faces
-// the grid cannot show.
+// one non-uniform grid G0 of empty, box, wedge, pyramid, quarter-cylinder and sphere-octant cells,
+// plus the complementary mesh of the faces the grid cannot show.
 //
 // 1. Planes. A face whose normal is within `angleToleranceDeg` of an axis is axis-aligned. Per
 //    axis, the faces' coordinate intervals (a face tilted by 0.5 degrees spans several
@@ -10,13 +10,19 @@
 // 2. Grid. The clusters and the mesh's bounding box give each axis's boundaries, snapped to the
 //    encoding's millimetres. A face sloped along one axis only (a roof pitch, a ramp) adds its end
 //    lines, and boundaries where it crosses other boundaries, so that it runs through cells from
-//    corner to corner: those cells become wedges. Faces on a quarter of a cylinder whose axis is
-//    parallel to an axis (a round corner, a cove) add the axis and the two tangent lines, so that
+//    corner to corner: those cells become wedges, where the slope's faces cover the cell's whole
+//    cross-section. Where its outline cuts a cell diagonally (a hip or valley: two planes meeting
+//    in a crease no solid has) the cell is no wedge and the faces' part over it goes to the
+//    complementary mesh; a few points along each hip and valley become boundaries, so that those
+//    cells are one row of small cells along the crease. Faces on a quarter of a cylinder whose axis
+//    is parallel to an axis (a round corner, a cove) add the axis and the two tangent lines, so that
 //    the quarter arc fills the cross-section of one cell: those cells become quarter cylinders.
 //    Where other boundaries cut that cross-section, the piece gets a block of its own, one quarter
 //    cylinder across, which every cell of G0 in the piece's box redirects to. Faces on an octant of
 //    a sphere (a quarter of a dome) add the planes of its box likewise: one sphere-octant cell, or
-//    a block of its own.
+//    a block of its own; so does a corner slope (a planar piece sloped along all three axes that
+//    is the triangle through the three box corners next to one corner: a chamfered corner), as
+//    one pyramid or inverse-pyramid cell.
 // 3. Occupancy. Lines through the cell centres along one axis are intersected with the faces.
 //    Where a line meets a closed surface (entries and exits balance, merged where the line passes
 //    through a shared edge or vertex), the running count of entries minus exits is the winding
@@ -50,6 +56,7 @@ struct SolidOptions {
   double angleToleranceDeg = 1.0;   // how far a normal may be from an axis and still count as on it
   bool wedges = true;               // fit wedge cells to faces sloped along one axis
   bool quadrics = true;             // fit quarter-cylinder and sphere-octant cells to curved pieces
+  bool pyramids = true;             // fit pyramid cells to corner slopes (chamfered corners)
   // Keep a slope whose cells mostly became wedges, leaving its faces over the other cells to the
   // complementary mesh; false: only slopes that became wedges everywhere stay (a smaller grid).
   bool partialWedges = true;
@@ -76,6 +83,10 @@ struct SolidStats {
   int sphereOctants = 0;              // sphere-octant pieces found (quarters of domes)
   int sphereOctantsAsCells = 0;       // of those, shown by sphere-octant cells (a cell or a sub-block)
   long long sphereOctantCells = 0;    // sphere-octant and inverse sphere-octant cells
+  int cornerSlopes = 0;               // corner-slope pieces found (triangles cutting a box corner)
+  int cornerSlopesAsCells = 0;        // of those, shown by pyramid cells (a cell or a sub-block)
+  int cornerSlopesAsSubBlocks = 0;    // of those, shown by a block of their own (cut by other boundaries)
+  long long pyramidCells = 0;         // pyramid and inverse pyramid cells
   long long trimmedCells = 0;         // cut by the complementary mesh and not inside all over: empty
   long long columns = 0;              // lines of cells along the sweep axis
   long long windingColumns = 0;       // of those, not closed along the line: decided by winding numbers
@@ -83,7 +94,7 @@ struct SolidStats {
   long long ambiguousCells = 0;       // needed the extra samples
   int sweepAxis = 0;
   double areaM2 = 0;                  // whole mesh
-  double nutAreaM2 = 0;               // shown by grid cells (axis-aligned faces, wedges, quadrics)
+  double nutAreaM2 = 0;               // shown by grid cells (axis-aligned faces, wedges, pyramids, quadrics)
   double complementAreaM2 = 0;        // left to the complementary mesh
   double hiddenAreaM2 = 0;            // between two solid cells: inner faces nobody sees
   // Seconds per step: planes and grid, occupancy, wedges, materials; the winding-number tree is
