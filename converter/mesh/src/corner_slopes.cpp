@@ -7,7 +7,6 @@
 // face sloped along three axes stays in the complementary mesh.
 #include <algorithm>
 #include <cmath>
-#include <limits>
 #include <numbers>
 #include <unordered_map>
 
@@ -62,28 +61,11 @@ void Builder::findCornerSlopes() {
       else seen.push_back(f);
     }
   }
-  std::unordered_map<std::uint32_t, std::vector<std::uint32_t>> groups;
-  for (std::uint32_t f = 0; f < faces.size(); ++f)
-    if (candidate(f)) groups[sets.find(f)].push_back(f);
-  std::vector<std::vector<std::uint32_t>> pieces;
-  for (auto& [root, members] : groups) pieces.push_back(std::move(members));
-  // Deterministic order whatever the hash map did.
-  std::sort(pieces.begin(), pieces.end(), [](const auto& a, const auto& b) { return a.front() < b.front(); });
-
-  for (std::vector<std::uint32_t>& members : pieces) {
-    dvec3 lo(std::numeric_limits<double>::infinity()), hi(-std::numeric_limits<double>::infinity());
-    dvec3 normalSum(0.0);
-    double area = 0;
-    std::vector<double> materialArea(mesh.materials.size(), 0.0);
-    for (std::uint32_t f : members) {
-      for (int k = 0; k < 3; ++k) {
-        lo = glm::min(lo, corner(f, k));
-        hi = glm::max(hi, corner(f, k));
-      }
-      normalSum += faces[f].areaVector;
-      area += faces[f].area;
-      materialArea[mesh.triangleMaterial[f]] += faces[f].area;
-    }
+  for (std::vector<std::uint32_t>& members : sets.groups(candidate)) {
+    const PieceSpan span = spanOf(members);
+    const dvec3 &lo = span.lo, &hi = span.hi;
+    const dvec3 normalSum = span.areaVector;
+    const double area = span.area;
     const dvec3 extent = hi - lo;
     if (std::min({extent.x, extent.y, extent.z}) <= 2 * tol || glm::length(normalSum) <= 0) continue;
     const dvec3 normal = glm::normalize(normalSum);
@@ -117,7 +99,7 @@ void Builder::findCornerSlopes() {
       if (found) break;
     }
     if (!found) continue;
-    keepPiece(std::move(piece), std::move(members), materialArea);
+    keepPiece(std::move(piece), std::move(members), span.materialArea);
     ++stats.cornerSlopes;
   }
 }

@@ -9,7 +9,6 @@
 // Pyramid or InversePyramid cells or sub-blocks.
 #include <algorithm>
 #include <cmath>
-#include <limits>
 #include <numbers>
 #include <numeric>
 #include <unordered_map>
@@ -84,33 +83,15 @@ void Builder::findQuadrics() {
       if (!fresh) sets.unite(f, it->second);
     }
   }
-  std::unordered_map<std::uint32_t, std::vector<std::uint32_t>> groups;
-  for (std::uint32_t f = 0; f < faces.size(); ++f)
-    if (faces[f].kind == FaceKind::Slope) groups[sets.find(f)].push_back(f);
-  std::vector<std::vector<std::uint32_t>> pieces;
-  for (auto& [root, members] : groups) pieces.push_back(std::move(members));
-  // Deterministic order whatever the hash map did.
-  std::sort(pieces.begin(), pieces.end(), [](const auto& a, const auto& b) { return a.front() < b.front(); });
-
-  for (std::vector<std::uint32_t>& members : pieces) {
+  for (std::vector<std::uint32_t>& members : sets.groups([&](std::uint32_t f) { return faces[f].kind == FaceKind::Slope; })) {
     QuadricPiece piece;
     piece.e = faces[members.front()].axis;
     const int e = piece.e, u = kU[e], v = kV[e];
-    dvec2 lo(std::numeric_limits<double>::infinity()), hi(-std::numeric_limits<double>::infinity());
-    piece.e0 = std::numeric_limits<double>::infinity();
-    piece.e1 = -std::numeric_limits<double>::infinity();
-    std::vector<double> materialArea(mesh.materials.size(), 0.0);
-    for (std::uint32_t f : members) {
-      for (int k = 0; k < 3; ++k) {
-        const dvec3 q = corner(f, k);
-        lo = glm::min(lo, dvec2(q[u], q[v]));
-        hi = glm::max(hi, dvec2(q[u], q[v]));
-        piece.e0 = std::min(piece.e0, q[e]);
-        piece.e1 = std::max(piece.e1, q[e]);
-      }
-      piece.area += faces[f].area;
-      materialArea[mesh.triangleMaterial[f]] += faces[f].area;
-    }
+    const PieceSpan span = spanOf(members);
+    const dvec2 lo(span.lo[u], span.lo[v]), hi(span.hi[u], span.hi[v]);
+    piece.e0 = span.lo[e];
+    piece.e1 = span.hi[e];
+    piece.area = span.area;
     piece.radius = hi - lo;
     if (std::min(piece.radius.x, piece.radius.y) <= 2 * tol || piece.e1 - piece.e0 <= 2 * tol) continue;
     const double expected = quarterArc(piece.radius.x, piece.radius.y) * (piece.e1 - piece.e0);
@@ -136,7 +117,7 @@ void Builder::findQuadrics() {
       if (found) break;
     }
     if (!found) continue;
-    keepPiece(std::move(piece), std::move(members), materialArea);
+    keepPiece(std::move(piece), std::move(members), span.materialArea);
   }
   stats.quadrics = static_cast<int>(quadrics.size());
 }
@@ -151,6 +132,21 @@ void Builder::keepPiece(QuadricPiece piece, std::vector<std::uint32_t> members, 
   }
   piece.faces = std::move(members);
   quadrics.push_back(std::move(piece));
+}
+
+Builder::PieceSpan Builder::spanOf(const std::vector<std::uint32_t>& members) const {
+  PieceSpan span;
+  span.materialArea.assign(mesh.materials.size(), 0.0);
+  for (std::uint32_t f : members) {
+    for (int k = 0; k < 3; ++k) {
+      span.lo = glm::min(span.lo, corner(f, k));
+      span.hi = glm::max(span.hi, corner(f, k));
+    }
+    span.areaVector += faces[f].areaVector;
+    span.area += faces[f].area;
+    span.materialArea[mesh.triangleMaterial[f]] += faces[f].area;
+  }
+  return span;
 }
 
 // Faces sloped along all three axes (quarter-round pieces taken) are joined into pieces the same
@@ -182,26 +178,11 @@ void Builder::findSphereOctants() {
       if (!fresh) sets.unite(f, it->second);
     }
   }
-  std::unordered_map<std::uint32_t, std::vector<std::uint32_t>> groups;
-  for (std::uint32_t f = 0; f < faces.size(); ++f)
-    if (candidate(f)) groups[sets.find(f)].push_back(f);
-  std::vector<std::vector<std::uint32_t>> pieces;
-  for (auto& [root, members] : groups) pieces.push_back(std::move(members));
-  std::sort(pieces.begin(), pieces.end(), [](const auto& a, const auto& b) { return a.front() < b.front(); });
-
   stats.sphereOctants = 0;
-  for (std::vector<std::uint32_t>& members : pieces) {
-    dvec3 lo(std::numeric_limits<double>::infinity()), hi(-std::numeric_limits<double>::infinity());
-    double area = 0;
-    std::vector<double> materialArea(mesh.materials.size(), 0.0);
-    for (std::uint32_t f : members) {
-      for (int k = 0; k < 3; ++k) {
-        lo = glm::min(lo, corner(f, k));
-        hi = glm::max(hi, corner(f, k));
-      }
-      area += faces[f].area;
-      materialArea[mesh.triangleMaterial[f]] += faces[f].area;
-    }
+  for (std::vector<std::uint32_t>& members : sets.groups(candidate)) {
+    const PieceSpan span = spanOf(members);
+    const dvec3 &lo = span.lo, &hi = span.hi;
+    const double area = span.area;
     const dvec3 radius = hi - lo;
     if (std::min({radius.x, radius.y, radius.z}) <= 2 * tol) continue;
     const double expected = octantArea(radius.x, radius.y, radius.z);
@@ -232,7 +213,7 @@ void Builder::findSphereOctants() {
       if (found) break;
     }
     if (!found) continue;
-    keepPiece(std::move(piece), std::move(members), materialArea);
+    keepPiece(std::move(piece), std::move(members), span.materialArea);
     ++stats.sphereOctants;
   }
 }

@@ -11,6 +11,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <mutex>
 #include <optional>
 #include <span>
@@ -240,6 +241,15 @@ struct Builder {
     return {static_cast<int>(id % nx), static_cast<int>(id / nx % ny), static_cast<int>(id / (nx * ny))};
   }
   dvec3 corner(std::uint32_t face, int k) const { return p[mesh.triangles[face][static_cast<std::size_t>(k)]]; }
+
+  // What a piece of faces spans: its bounding box, area, summed area vector and area per material.
+  struct PieceSpan {
+    dvec3 lo{std::numeric_limits<double>::infinity()}, hi{-std::numeric_limits<double>::infinity()};
+    dvec3 areaVector{0.0};
+    double area = 0;
+    std::vector<double> materialArea;
+  };
+  PieceSpan spanOf(const std::vector<std::uint32_t>& members) const;
 
   void analyseFaces();
   void findSlopes();
