@@ -34,6 +34,9 @@
 namespace nut::converter {
 namespace {
 
+using testing::cellsOf;
+using testing::nutFraction;
+
 constexpr double W = 10, H = 6, D = 8;  // x, y (up), z
 
 using Loop = std::vector<glm::dvec3>;
@@ -168,21 +171,8 @@ Mesh chamferedBox(const std::vector<Chamfer>& chamfers, const std::string& name)
 
 const Chamfer kTopChamfer{7, {1.5, 1.2, 2.0}};
 
-Conversion convert(const Mesh& mesh, const ConvertOptions& options = {}) {
-  auto c = convertMesh(mesh, options);
-  EXPECT_TRUE(c.ok()) << c.error().message;
-  return c.ok() ? std::move(*c) : Conversion{};
-}
 
-double nutFraction(const Conversion& c) { return c.report.solid.nutAreaM2 / c.report.solid.areaM2; }
 
-// Cells of the HNI per solid group (every block, as stored).
-int cellsOf(const Conversion& c, SolidGroup group) {
-  int count = 0;
-  for (const Block& block : c.hierarchy.blocks)
-    for (const Cell& cell : block.cells) count += cell.kind == CellKind::Solid && solidGroup(cell.solid) == group;
-  return count;
-}
 
 // Whether a triangle's normal is clearly off all three axis planes (sloped along three axes).
 bool threeAxis(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c) {
@@ -221,7 +211,7 @@ struct Expected {
 };
 
 void expectPyramids(const Mesh& mesh, const Expected& e, const std::string& stem) {
-  const Conversion c = convert(mesh);
+  const Conversion c = testing::convertOrFail(mesh);
   const SolidStats& s = c.report.solid;
   std::printf("%s: %d corner slopes, %d as cells (%d as sub-blocks), %lld pyramid cells (%d pyramid, %d inverse in the HNI), "
               "%zu blocks, NUT %.2f %% (+ %.2f %% hidden), complement %zu triangles\n",
@@ -321,7 +311,7 @@ TEST(Pyramids, OtherThreeAxisSlopesStayInTheComplementaryMesh) {
   Mesh mesh = emptyMesh("quad_cut");
   addPolytope(mesh, p);
   ASSERT_EQ(threeAxisFaces(mesh), 2);
-  const Conversion c = convert(mesh);
+  const Conversion c = testing::convertOrFail(mesh);
   const SolidStats& s = c.report.solid;
   std::printf("quad cut: %d corner slopes, %lld pyramid cells, complement %zu triangles (%d sloped along three axes)\n", s.cornerSlopes,
               s.pyramidCells, c.complement.triangles.size(), threeAxisFaces(c.complement));
@@ -337,7 +327,7 @@ TEST(Pyramids, OtherThreeAxisSlopesStayInTheComplementaryMesh) {
 // cell inside it, lie beyond the chamfer, so the cell stays solid and hides it: as before).
 TEST(Pyramids, SmallChamferStaysInTheComplementaryMesh) {
   const Mesh mesh = chamferedBox({{7, {0.3, 0.3, 0.3}}}, "small_chamfer");
-  const Conversion c = convert(mesh);
+  const Conversion c = testing::convertOrFail(mesh);
   const SolidStats& s = c.report.solid;
   std::printf("small chamfer: %d corner slopes, %lld pyramid cells, grid %d x %d x %d, complement %zu triangles\n", s.cornerSlopes,
               s.pyramidCells, s.cells[0], s.cells[1], s.cells[2], c.complement.triangles.size());
@@ -362,10 +352,10 @@ TEST(Pyramids, HipRoofConvertsAsBefore) {
   cutThrough(p, glm::dvec3(0, H, 0), glm::dvec3(0, H, D), glm::dvec3(3, H + 3, 1), inside);      // hip end facing -x
   cutThrough(p, glm::dvec3(W, H, 0), glm::dvec3(W, H, D), glm::dvec3(W - 3, H + 3, 1), inside);  // hip end facing +x
   addPolytope(mesh, p);
-  const Conversion c = convert(mesh);
+  const Conversion c = testing::convertOrFail(mesh);
   ConvertOptions without;
   without.solid.pyramids = false;
-  const Conversion before = convert(mesh, without);
+  const Conversion before = testing::convertOrFail(mesh, without);
   const SolidStats& s = c.report.solid;
   std::printf("hip roof: %d slopes, %d as wedges, %lld wedge cells, %d corner slopes, %lld pyramid cells, NUT %.2f %%, complement %zu "
               "triangles (%zu without pyramids)\n",

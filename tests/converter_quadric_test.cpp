@@ -27,6 +27,9 @@
 namespace nut::converter {
 namespace {
 
+using testing::cellsOf;
+using testing::nutFraction;
+
 constexpr double W = 10, H = 6, D = 8;  // x, y (up), z
 constexpr int kSegments = 32;
 
@@ -147,21 +150,8 @@ Mesh roundedBoxWithRecesses() {
   return mesh;
 }
 
-Conversion convert(const Mesh& mesh) {
-  auto c = convertMesh(mesh);
-  EXPECT_TRUE(c.ok()) << c.error().message;
-  return c.ok() ? std::move(*c) : Conversion{};
-}
 
-double nutFraction(const Conversion& c) { return c.report.solid.nutAreaM2 / c.report.solid.areaM2; }
 
-// Cells of the HNI per solid group (every block, as stored).
-int cellsOf(const Conversion& c, SolidGroup group) {
-  int count = 0;
-  for (const Block& block : c.hierarchy.blocks)
-    for (const Cell& cell : block.cells) count += cell.kind == CellKind::Solid && solidGroup(cell.solid) == group;
-  return count;
-}
 
 // Triangles of the complementary mesh whose normal is not along an axis: the corners' faces.
 int curvedComplementFaces(const Conversion& c) {
@@ -176,7 +166,7 @@ int curvedComplementFaces(const Conversion& c) {
 }
 
 void expectRoundCorners(const Mesh& mesh, int expected, int subBlocks, const std::string& stem) {
-  const Conversion c = convert(mesh);
+  const Conversion c = testing::convertOrFail(mesh);
   const SolidStats& s = c.report.solid;
   std::printf("%s: %d quarter-round pieces, %d as cells (%d as sub-blocks), %lld quadric cells, NUT %.2f %%, complement %zu triangles\n",
               stem.c_str(), s.quadrics, s.quadricsAsCells, s.quadricsAsSubBlocks, s.quadricCells, 100 * nutFraction(c),
@@ -267,7 +257,7 @@ Mesh domedBox(double sunk, const std::function<double(double, double)>& wave, bo
 const auto kSphere = [](double, double) { return 1.0; };
 
 void expectDome(const Mesh& mesh, bool subBlocks, const std::string& stem) {
-  const Conversion c = convert(mesh);
+  const Conversion c = testing::convertOrFail(mesh);
   const SolidStats& s = c.report.solid;
   std::printf("%s: %d sphere octants, %d as cells, %lld sphere-octant cells, %zu blocks, NUT %.2f %% (+ %.2f %% hidden), complement %zu triangles\n",
               stem.c_str(), s.sphereOctants, s.sphereOctantsAsCells, s.sphereOctantCells, c.hierarchy.blocks.size(),
@@ -297,7 +287,7 @@ TEST(SphereOctants, DomeCutByBoundariesBecomesSubBlocks) { expectDome(domedBox(0
 // stay in the complementary mesh.
 TEST(SphereOctants, OtherDomesStayInTheComplementaryMesh) {
   for (const Mesh& mesh : {domedBox(1, kSphere), domedBox(0, [](double az, double el) { return 1 + 0.025 * std::sin(6 * az) * std::cos(el); })}) {
-    const Conversion c = convert(mesh);
+    const Conversion c = testing::convertOrFail(mesh);
     const SolidStats& s = c.report.solid;
     std::printf("other dome: %d sphere octants, %lld sphere-octant cells, complement %zu triangles\n", s.sphereOctants,
                 s.sphereOctantCells, c.complement.triangles.size());
@@ -327,7 +317,7 @@ TEST(QuarterCylinders, CornersCutByRecessesBecomeSubBlocks) {
 TEST(QuarterCylinders, HouseCornersAndDrumBecomeSubBlocks) {
   auto obj = readObj(std::string(NUT_SOURCE_DIR) + "/samples/obj/house.obj");
   ASSERT_TRUE(obj.ok()) << obj.error().message;
-  const Conversion c = convert(mergeObjects(obj->objects, "house"));
+  const Conversion c = testing::convertOrFail(mergeObjects(obj->objects, "house"));
   const SolidStats& s = c.report.solid;
   std::printf("house: %d quarter-round pieces, %d as sub-blocks, %d sphere octants, %d shown (%lld cells), NUT %.2f %% "
               "(+ %.2f %% hidden), complement %.2f %%, %zu triangles\n",
@@ -348,7 +338,7 @@ TEST(QuarterCylinders, HouseCornersAndDrumBecomeSubBlocks) {
 TEST(QuarterCylinders, OtherCurvedCornersStayInTheComplementaryMesh) {
   const Radius cone = [](double, double y) { return 1.0 - 0.4 * y / H; };
   const Radius wavy = [](double t, double) { return 1.0 + 0.05 * std::sin(3 * std::numbers::pi * t); };
-  const Conversion c = convert(roundedBox({cone, wavy, nullptr, nullptr}));
+  const Conversion c = testing::convertOrFail(roundedBox({cone, wavy, nullptr, nullptr}));
   const SolidStats& s = c.report.solid;
   std::printf("other corners: %d quarter-round pieces, %lld quadric cells, NUT %.2f %%, complement %zu triangles\n", s.quadrics,
               s.quadricCells, 100 * nutFraction(c), c.complement.triangles.size());

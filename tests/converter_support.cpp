@@ -6,6 +6,7 @@
 #include <limits>
 
 #include <glm/geometric.hpp>
+#include <gtest/gtest.h>
 
 #include <meshref/embree_renderer.hpp>
 #include <nut/png_io.hpp>
@@ -103,6 +104,21 @@ Fidelity measureFidelity(const Mesh& source, const std::vector<const Conversion*
     }
   }
   return f;
+}
+
+Conversion convertOrFail(const Mesh& mesh, const ConvertOptions& options) {
+  auto c = convertMesh(mesh, options);
+  EXPECT_TRUE(c.ok()) << c.error().message;
+  return c.ok() ? std::move(*c) : Conversion{};
+}
+
+double nutFraction(const Conversion& c) { return c.report.solid.nutAreaM2 / c.report.solid.areaM2; }
+
+int cellsOf(const Conversion& c, SolidGroup group) {
+  int count = 0;
+  for (const Block& block : c.hierarchy.blocks)
+    for (const Cell& cell : block.cells) count += cell.kind == CellKind::Solid && solidGroup(cell.solid) == group;
+  return count;
 }
 
 }  // namespace nut::converter::testing

@@ -11,6 +11,7 @@
 #include <meshref/obj.hpp>
 #include <nut/camera.hpp>
 #include <nut/image.hpp>
+#include <nut/solids.hpp>
 
 namespace nut::converter::testing {
 
@@ -40,5 +41,14 @@ Fidelity measureFidelity(const Mesh& source, const std::vector<const Conversion*
 
 // The test output folder for a group of tests (created).
 std::string outputDir(const std::string& group);
+
+// convertMesh, failing the current test (and returning an empty conversion) when it fails.
+Conversion convertOrFail(const Mesh& mesh, const ConvertOptions& options = {});
+
+// The share of the mesh's surface shown by grid cells.
+double nutFraction(const Conversion& c);
+
+// Cells of the HNI in one solid group (every block, as stored).
+int cellsOf(const Conversion& c, SolidGroup group);
 
 }  // namespace nut::converter::testing

@@ -40,6 +40,8 @@
 namespace nut::converter {
 namespace {
 
+using testing::cellsOf;
+
 using glm::dvec3;
 
 constexpr std::uint16_t kWall = 0, kRoof = 1;
@@ -170,11 +172,6 @@ void writeObj(const Mesh& mesh) {
   }
 }
 
-Conversion convert(const Mesh& mesh, const ConvertOptions& options = {}) {
-  auto c = convertMesh(mesh, options);
-  EXPECT_TRUE(c.ok()) << c.error().message;
-  return c.ok() ? std::move(*c) : Conversion{};
-}
 
 dvec3 areaVector(const Mesh& mesh, std::size_t t) {
   const auto& tri = mesh.triangles[t];
@@ -203,12 +200,6 @@ double planDistance(const dvec3& q, const std::array<dvec3, 2>& ab) {
   return glm::length(p - (a + t * (b - a)));
 }
 
-int cellsOf(const Conversion& c, SolidGroup group) {
-  int count = 0;
-  for (const Block& block : c.hierarchy.blocks)
-    for (const Cell& cell : block.cells) count += cell.kind == CellKind::Solid && solidGroup(cell.solid) == group;
-  return count;
-}
 
 struct Figures {
   double roofArea = 0;            // the source's sloped faces
@@ -257,7 +248,7 @@ Figures measure(const Mesh& mesh, const Conversion& c, const std::vector<std::ar
 TEST(Wedges, HipRoofRendersLikeItsSource) {
   const Mesh mesh = hipRoof();
   writeObj(mesh);
-  const Conversion c = convert(mesh);
+  const Conversion c = testing::convertOrFail(mesh);
   const SolidStats& s = c.report.solid;
   const Figures f = measure(mesh, c, kHips, "hip_roof");
   EXPECT_GE(f.fidelity.worstWithinPct, 99.0) << "see converter_wedge/hip_roof.view*.diff.png";
@@ -293,7 +284,7 @@ TEST(Wedges, HipRoofWithoutPartialWedgesGoesToTheMesh) {
   const Mesh mesh = hipRoof();
   ConvertOptions options;
   options.solid.partialWedges = false;
-  const Conversion c = convert(mesh, options);
+  const Conversion c = testing::convertOrFail(mesh, options);
   const SolidStats& s = c.report.solid;
   const Figures f = measure(mesh, c, kHips, "hip_roof_whole_wedges_only");
   EXPECT_GE(f.fidelity.worstWithinPct, 99.0);
@@ -310,7 +301,7 @@ TEST(Wedges, HipRoofWithoutPartialWedgesGoesToTheMesh) {
 TEST(Wedges, LShapedHipRoofWithAValleyRendersLikeItsSource) {
   const Mesh mesh = lRoof();
   writeObj(mesh);
-  const Conversion c = convert(mesh);
+  const Conversion c = testing::convertOrFail(mesh);
   const SolidStats& s = c.report.solid;
   const Figures f = measure(mesh, c, kLCreases, "l_roof");
   EXPECT_GE(f.fidelity.worstWithinPct, 99.0) << "see converter_wedge/l_roof.view*.diff.png";
@@ -336,7 +327,7 @@ TEST(Wedges, LShapedHipRoofWithAValleyRendersLikeItsSource) {
 TEST(Wedges, GableRoofIsAllWedges) {
   const Mesh mesh = gableRoof();
   writeObj(mesh);
-  const Conversion c = convert(mesh);
+  const Conversion c = testing::convertOrFail(mesh);
   const SolidStats& s = c.report.solid;
   measure(mesh, c, {}, "gable_roof", 0.0);
   EXPECT_EQ(s.slopes, 2);
@@ -352,7 +343,7 @@ TEST(Wedges, GableRoofIsAllWedges) {
   Mesh plain = mesh;
   plain.name = "gable_roof_one_material";
   std::fill(plain.triangleMaterial.begin(), plain.triangleMaterial.end(), kWall);
-  const Conversion one = convert(plain);
+  const Conversion one = testing::convertOrFail(plain);
   EXPECT_EQ(one.report.solid.wedgeCells, 2);
   EXPECT_EQ(one.complement.triangles.size(), 0u);
   const Figures f = measure(plain, one, {}, "gable_roof_one_material");

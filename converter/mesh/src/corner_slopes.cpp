@@ -79,17 +79,11 @@ void Builder::findCornerSlopes() {
     const double expected = 0.5 * std::sqrt(ab * ab + bc * bc + ca * ca);
     if (std::abs(area - expected) > kAreaSlack * expected) continue;
     QuadricPiece piece;
-    piece.e = 2;
+    piece.spanBox(lo, hi, area);
     piece.planar = true;
-    piece.radius = dvec2(extent.x, extent.y);
-    piece.e0 = lo.z;
-    piece.e1 = hi.z;
-    piece.area = area;
     bool found = false;
     for (const int side : {1, -1}) {
-      piece.quadrant = {normal.x > 0 ? side : -side, normal.y > 0 ? side : -side};
-      piece.eSign = normal.z > 0 ? side : -side;
-      piece.centre = dvec2(piece.quadrant[0] > 0 ? lo.x : hi.x, piece.quadrant[1] > 0 ? lo.y : hi.y);
+      piece.centreAtCorner(normal, side, lo, hi);
       // Distance from the plane x'/a + y'/b + z'/c = 1 (x', y', z' from V along the box).
       found = std::all_of(members.begin(), members.end(), [&](std::uint32_t f) {
         for (int k = 0; k < 3; ++k)

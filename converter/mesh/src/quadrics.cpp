@@ -188,17 +188,11 @@ void Builder::findSphereOctants() {
     const double expected = octantArea(radius.x, radius.y, radius.z);
     if (area < kMinCoverage * expected || area > kMaxCoverage * expected) continue;
     QuadricPiece piece;
-    piece.e = 2;
-    piece.radius = dvec2(radius.x, radius.y);
-    piece.e0 = lo.z;
-    piece.e1 = hi.z;
-    piece.area = area;
+    piece.spanBox(lo, hi, area);
     const dvec3 normal = faces[members.front()].areaVector;
     bool found = false;
     for (const int side : {1, -1}) {
-      piece.quadrant = {normal.x > 0 ? side : -side, normal.y > 0 ? side : -side};
-      piece.eSign = normal.z > 0 ? side : -side;
-      piece.centre = dvec2(piece.quadrant[0] > 0 ? lo.x : hi.x, piece.quadrant[1] > 0 ? lo.y : hi.y);
+      piece.centreAtCorner(normal, side, lo, hi);
       // Corners on the surface; edge midpoints too, but a chord's midpoint lies inside by its
       // sagitta (length^2 / 8 radius), which a dome's few rings make more than the tolerance.
       found = std::all_of(members.begin(), members.end(), [&](std::uint32_t f) {

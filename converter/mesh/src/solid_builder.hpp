@@ -135,6 +135,20 @@ struct QuadricPiece {
   std::vector<std::int8_t> layers;  // the solid of each layer of its box along e (an octant: one)
 
   bool octant() const { return eSign != 0; }
+  // A corner-centred piece (sphere octant, corner slope) spanning the box [lo, hi] along e = z.
+  void spanBox(const dvec3& boxLo, const dvec3& boxHi, double pieceArea) {
+    e = 2;
+    radius = dvec2(boxHi.x - boxLo.x, boxHi.y - boxLo.y);
+    e0 = boxLo.z;
+    e1 = boxHi.z;
+    area = pieceArea;
+  }
+  // Its centre at the box corner behind the normal (side = +1) or in front of it (side = -1).
+  void centreAtCorner(const dvec3& normal, int side, const dvec3& boxLo, const dvec3& boxHi) {
+    quadrant = {normal.x > 0 ? side : -side, normal.y > 0 ? side : -side};
+    eSign = normal.z > 0 ? side : -side;
+    centre = dvec2(quadrant[0] > 0 ? boxLo.x : boxHi.x, quadrant[1] > 0 ? boxLo.y : boxHi.y);
+  }
   // The largest radius: rho's error times this is a distance.
   double reach() const { return std::max({radius.x, radius.y, octant() ? e1 - e0 : 0.0}); }
   // Distance of x (grid frame) from the axis or centre, in units of the radius: 1 on the surface
