@@ -13,8 +13,7 @@
 // 8/255; the diff images go to the test output folder, converter_wedge/, when not). The hip and L
 // roofs keep most of their roof surface as NUT wedges and show the hips' and the valley's parts in
 // the complementary mesh, nothing else; the gable roof is all wedges with an empty complementary
-// mesh, as before (its gable triangles take the roof's colour in two materials, an older matter of
-// materialConflicts: its fidelity is checked in one). With only slopes that are wedges everywhere
+// mesh, its gable triangles in the wall's material, in two materials and in one. With only slopes that are wedges everywhere
 // (the converter's coarser fallback) the hip roof's four slopes fail and are dropped, and it still
 // renders like its source. The meshes are also written to converter_wedge/*.obj for `nut convert`.
 #include <gtest/gtest.h>
@@ -318,22 +317,22 @@ TEST(Wedges, LShapedHipRoofWithAValleyRendersLikeItsSource) {
 }
 
 // Two rectangular pitches: every cell under them is covered whole, so the roof is wedges only, no
-// crease points are added and nothing goes to the complementary mesh (the HNI is the one the
-// converter wrote before partial cover was looked at). The grid is 1 x 2 x 2 cells: one wedge per
-// pitch over the whole 10 m, whose gable ends, 6 m^2 against the pitch's 50 m^2, are below the
-// share that makes materialConflicts separate them, so in two materials the gable triangles show
-// the roof's colour (printed, about 97 % of pixels in the worst view); the geometry is checked in
-// one material.
+// crease points are added and nothing goes to the complementary mesh. Walls and roof differ in
+// material: each gable end (6 m^2) is a small share of its cell (one wedge under a 50 m^2 pitch)
+// but 1.8 % of the surface, so materialConflicts separates it by a boundary 2 mm inside the gable
+// (the grid goes from 1 x 2 x 2 to 3 x 2 x 2 cells) and the gable triangles keep the wall's colour.
+// In one material the grid stays 1 x 2 x 2.
 TEST(Wedges, GableRoofIsAllWedges) {
   const Mesh mesh = gableRoof();
   writeObj(mesh);
   const Conversion c = testing::convertOrFail(mesh);
   const SolidStats& s = c.report.solid;
-  measure(mesh, c, {}, "gable_roof", 0.0);
+  const Figures two = measure(mesh, c, {}, "gable_roof");
+  EXPECT_GE(two.fidelity.worstWithinPct, 99.0) << "see converter_wedge/gable_roof.view*.diff.png";
   EXPECT_EQ(s.slopes, 2);
   EXPECT_EQ(s.slopesAsWedges, 2);
-  EXPECT_EQ(s.wedgeCells, 2);
-  EXPECT_EQ(s.cells, (std::array<int, 3>{1, 2, 2}));
+  EXPECT_EQ(s.wedgeCells, 6);
+  EXPECT_EQ(s.cells, (std::array<int, 3>{3, 2, 2}));
   EXPECT_EQ(s.slopeBoundaries, 2);  // the eaves (y = 6) and the ridge (z = 4)
   EXPECT_EQ(c.complement.triangles.size(), 0u);
   EXPECT_EQ(s.complementAreaM2, 0);
@@ -345,6 +344,7 @@ TEST(Wedges, GableRoofIsAllWedges) {
   std::fill(plain.triangleMaterial.begin(), plain.triangleMaterial.end(), kWall);
   const Conversion one = testing::convertOrFail(plain);
   EXPECT_EQ(one.report.solid.wedgeCells, 2);
+  EXPECT_EQ(one.report.solid.cells, (std::array<int, 3>{1, 2, 2}));
   EXPECT_EQ(one.complement.triangles.size(), 0u);
   const Figures f = measure(plain, one, {}, "gable_roof_one_material");
   EXPECT_GE(f.fidelity.worstWithinPct, 99.0) << "see converter_wedge/gable_roof_one_material.view*.diff.png";

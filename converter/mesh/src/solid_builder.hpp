@@ -42,6 +42,11 @@ constexpr double kMinPieceAreaM2 = 1e-6;
 // Faces whose material differs from their cell's on more than this share of the grid's surface
 // make the grid be built again with boundaries that separate them.
 constexpr double kConflictShareForRebuild = 0.001;
+// A side of a cell whose material is not the cell's counts as a conflict when it is this share of
+// the cell's faces (a small trim on a big cell is not worth a boundary across the whole grid)...
+constexpr double kConflictShareOfCell = 0.15;
+// ...or this share of the mesh's surface, however big the cell (a gable end under a long pitch).
+constexpr double kConflictShareOfSurface = 0.005;
 // Builds of the grid at most (see buildSolidGrid).
 constexpr int kAttempts = 3;
 constexpr std::size_t kMaxSlopeBoundariesPerAxis = 128;

@@ -234,7 +234,8 @@ std::array<std::vector<double>, 3> Builder::materialConflicts(const std::vector<
                          static_cast<int>(cell / static_cast<std::size_t>(n[0]) % static_cast<std::size_t>(n[1])),
                          static_cast<int>(cell / (static_cast<std::size_t>(n[0]) * static_cast<std::size_t>(n[1])))};
     for (int side = 0; side < 6; ++side) {
-      if (side == best || sideArea[static_cast<std::size_t>(side)] < 0.15 * total ||
+      const double area = sideArea[static_cast<std::size_t>(side)];
+      if (side == best || (area < kConflictShareOfCell * total && area < kConflictShareOfSurface * stats.areaM2) ||
           sideMaterial[static_cast<std::size_t>(side)] == sideMaterial[static_cast<std::size_t>(best)])
         continue;
       const int a = side / 2;
