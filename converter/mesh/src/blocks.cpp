@@ -555,32 +555,26 @@ void extractManual(Hierarchy& h, Block& g0, const WorldBox& box, const glm::dvec
         }
     return true;
   };
+  // The first combination of per-axis matches whose cells fit at `at`, if any.
+  const auto firstFit = [&](const std::array<int, 3>& at) -> std::optional<std::array<const AxisMap*, 3>> {
+    for (const AxisMap& cz : matches[2][static_cast<std::size_t>(at[2])])
+      for (const AxisMap& cy : matches[1][static_cast<std::size_t>(at[1])])
+        for (const AxisMap& cx : matches[0][static_cast<std::size_t>(at[0])])
+          if (const std::array<const AxisMap*, 3> m{&cx, &cy, &cz}; fits(at, m)) return m;
+    return std::nullopt;
+  };
   for (int z = 0; z < g0.cellCount(2); ++z)
     for (int y = 0; y < g0.cellCount(1); ++y)
       for (int x = 0; x < g0.cellCount(0); ++x) {
+        if (claimed[g0.cellIndex(x, y, z)]) continue;
         const std::array<int, 3> at{x, y, z};
-        const auto& mx = matches[0][static_cast<std::size_t>(x)];
-        const auto& my = matches[1][static_cast<std::size_t>(y)];
-        const auto& mz = matches[2][static_cast<std::size_t>(z)];
-        if (mx.empty() || my.empty() || mz.empty() || claimed[g0.cellIndex(x, y, z)]) continue;
-        bool matched = false;
-        for (const AxisMap& cz : mz) {
-          for (const AxisMap& cy : my) {
-            for (const AxisMap& cx : mx) {
-              const std::array<const AxisMap*, 3> m{&cx, &cy, &cz};
-              if (!fits(at, m)) continue;
-              places.push_back(Place{at, m});
-              for (std::size_t k = 0; k < cz.sCell.size(); ++k)
-                for (std::size_t j = 0; j < cy.sCell.size(); ++j)
-                  for (std::size_t i = 0; i < cx.sCell.size(); ++i)
-                    claimed[g0.cellIndex(x + static_cast<int>(i), y + static_cast<int>(j), z + static_cast<int>(k))] = true;
-              matched = true;
-              break;
-            }
-            if (matched) break;
-          }
-          if (matched) break;
-        }
+        const auto m = firstFit(at);
+        if (!m) continue;
+        places.push_back(Place{at, *m});
+        for (std::size_t k = 0; k < (*m)[2]->sCell.size(); ++k)
+          for (std::size_t j = 0; j < (*m)[1]->sCell.size(); ++j)
+            for (std::size_t i = 0; i < (*m)[0]->sCell.size(); ++i)
+              claimed[g0.cellIndex(x + static_cast<int>(i), y + static_cast<int>(j), z + static_cast<int>(k))] = true;
       }
 
   const BlockId target = h.addBlock(pattern);
