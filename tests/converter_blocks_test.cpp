@@ -348,7 +348,103 @@ TEST(ManualBlocks, PlacesMatchingCellForCellStillMatch) {
   ASSERT_EQ(r.stats.found.size(), 1u);
   EXPECT_EQ(r.stats.found[0].cells, (std::array<int, 3>{1, 1, 1}));
   EXPECT_EQ(r.stats.found[0].instances, 3);
-  EXPECT_EQ(redirectionCells(r.h.blocks[r.h.root]), 6);
+  // The two cells of each exact place show S at one place and merge into one cell; the last
+  // place's second cell starts 8 mm past S's middle, so its two cells stay apart.
+  EXPECT_EQ(redirectionCells(r.h.blocks[r.h.root]), 1 + 1 + 2);
+}
+
+
+// Three cells along x, each redirecting to block 0 with the given x offsets (metres).
+Block threeRedirectingCells(const std::array<double, 3>& offsetsX, const std::array<BlockId, 3>& targets = {0, 0, 0}) {
+  Block b = blockFromBounds(std::array<std::vector<double>, 3>{{{0.0, 0.4, 1.0, 2.5}, {0.0, 1.0}, {0.0, 1.0}}}, [](const glm::dvec3&) { return Cell::empty(); });
+  for (int x = 0; x < 3; ++x) {
+    b.cell(x, 0, 0) = Cell::redirect(static_cast<std::uint32_t>(x));
+    b.redirections.push_back(Redirection{targets[static_cast<std::size_t>(x)], glm::dvec3(offsetsX[static_cast<std::size_t>(x)], 0.0, 0.0), Rotation{}, {false, false, false}});
+  }
+  return b;
+}
+
+TEST(Simplify, CellsPlacingABlockAtOnePlaceMerge) {
+  // The target's origin is at x = 0.1 for all three cells: they show one placement of it.
+  Block b = threeRedirectingCells({0.1, -0.3, -0.9});
+  simplify(b);
+  ASSERT_EQ(b.cellCount(0), 1);
+  ASSERT_EQ(b.cells[0].kind, CellKind::Redirection);
+  EXPECT_NEAR(b.redirections[b.cells[0].redirection].offsetM.x, 0.1, 1e-12);
+}
+
+TEST(Simplify, CellsPlacingABlockAtDifferentPlacesStayApart) {
+  Block shifted = threeRedirectingCells({0.1, -0.3, -0.8});  // the third places it 0.1 m further
+  simplify(shifted);
+  EXPECT_EQ(shifted.cellCount(0), 2);
+  Block otherTarget = threeRedirectingCells({0.1, -0.3, -0.9}, {0, 1, 0});
+  simplify(otherTarget);
+  EXPECT_EQ(otherTarget.cellCount(0), 3);
+}
+
+// Whether point p of block `id` is inside a solid, and its material: follows redirections and
+// tests the point against the cell's solid (a plain box and a quarter cylinder holding the same
+// point agree).
+std::optional<std::uint16_t> materialAt(const Hierarchy& h, BlockId id, glm::dvec3 p, int depth = 0) {
+  const Block& b = h.blocks[id];
+  std::array<int, 3> c{};
+  glm::dvec3 unit;
+  for (int a = 0; a < 3; ++a) {
+    const auto& bounds = b.boundsM[static_cast<std::size_t>(a)];
+    if (p[a] < 0 || p[a] >= bounds.back()) return std::nullopt;
+    const auto i = static_cast<std::size_t>(std::upper_bound(bounds.begin(), bounds.end(), p[a]) - bounds.begin()) - 1;
+    c[static_cast<std::size_t>(a)] = static_cast<int>(i);
+    unit[a] = (p[a] - bounds[i]) / (bounds[i + 1] - bounds[i]);
+  }
+  const Cell& cell = b.cell(c[0], c[1], c[2]);
+  if (cell.kind == CellKind::Solid) return solidContains(cell.solid, unit) ? std::optional(cell.material) : std::nullopt;
+  if (cell.kind == CellKind::Empty || depth > 32) return std::nullopt;
+  const Redirection& r = b.redirections[cell.redirection];
+  return materialAt(h, r.target, testing::redirectedPoint(h, b, c, r, p), depth + 1);
+}
+
+TEST(RoundPieces, CellsOnOneSideOfTheArcBecomePlainCells) {
+  // A wall 3 m thick whose corner is a quarter cylinder of radius 1 m (sub-block 0, one cell),
+  // its box cut by boundaries from elsewhere at 0.2 and 0.5 m along x and z (a window recess
+  // elsewhere in the layer, here the solid strip at y > 1 that needs them).
+  const std::vector<double> xs{0.0, 0.2, 0.5, 1.0, 3.0}, zs{0.0, 0.2, 0.5, 1.0, 3.0};
+  Block piece = blockFromBounds(std::array<std::vector<double>, 3>{{{0.0, 1.0}, {0.0, 2.0}, {0.0, 1.0}}}, [](const glm::dvec3&) {
+    return Cell::solidCell(makeSolid(SolidGroup::QuarterCylinder, 1 * 4 + 3), 1);  // edge along y at x = z = 1
+  });
+  Block g0 = blockFromBounds(std::array<std::vector<double>, 3>{xs, {0.0, 1.0, 2.0}, zs}, [](const glm::dvec3& c) {
+    if (c.y > 1.0) return c.x < 0.2 || c.z < 0.2 ? Cell::box(2) : Cell::empty();  // needs the cuts
+    return Cell::box(1);
+  });
+  for (int z = 0; z < 3; ++z)
+    for (int x = 0; x < 3; ++x) {
+      g0.cell(x, 0, z) = Cell::redirect(static_cast<std::uint32_t>(g0.redirections.size()));
+      g0.redirections.push_back(Redirection{0, -glm::dvec3(xs[static_cast<std::size_t>(x)], 0.0, zs[static_cast<std::size_t>(z)]), Rotation{}, {false, false, false}});
+    }
+  Hierarchy reference;
+  reference.addBlock(piece);
+  reference.root = reference.addBlock(g0);
+  const std::vector<Material> materials{Material{}, Material{200, 200, 200}, Material{40, 60, 90}};
+  reference.materials = materials;
+
+  for (const bool automatic : {false, true}) {
+    BlockOptions options;
+    options.automatic = automatic;
+    BlockStats stats;
+    auto h = buildHierarchy(g0, materials, glm::dvec3(0.0), options, stats, {piece});
+    ASSERT_TRUE(h.ok());
+    // The cells the arc does not pass through become plain: inside it those within [0.5, 1) m on
+    // both axes, outside it the one within [0, 0.2) on both. The others still redirect.
+    long long redirections = 0;
+    for (const Block& b : h->blocks)
+      redirections += std::count_if(b.cells.begin(), b.cells.end(), [](const Cell& c) { return c.kind == CellKind::Redirection; });
+    EXPECT_LT(redirections, 9) << (automatic ? "automatic" : "none");
+    std::mt19937 rng(21);
+    std::uniform_real_distribution<double> d(0.0, 1.0);
+    for (int i = 0; i < 20000; ++i) {
+      const glm::dvec3 p(3.0 * d(rng), 2.0 * d(rng), 3.0 * d(rng));
+      ASSERT_EQ(materialAt(reference, reference.root, p), materialAt(*h, h->root, p)) << p.x << "," << p.y << "," << p.z;
+    }
+  }
 }
 
 }  // namespace

@@ -603,3 +603,52 @@ TEST(RotateSolid, ComposesLikeTheMatrices) {
 }
 
 }  // namespace
+
+// solidCoverage against the inside test: for every solid and every box whose corners lie on the
+// quarter lattice of the unit cube, "all" means every sample point of the box is inside, "none"
+// that every point strictly inside the box is outside, and "part" that the samples find both.
+TEST(SolidCoverage, AgreesWithPointsOfEveryLatticeBox) {
+  constexpr int kSamples = 9;  // per axis, across the box, faces included
+  for (int index = 0; index < nut::kSolidCount; ++index) {
+    const nut::Solid s{static_cast<std::uint8_t>(index)};
+    int counts[3] = {0, 0, 0};
+    for (int box = 0; box < 1000; ++box) {
+      // Box `box`: per axis one of the 10 intervals [i/4, j/4], i < j.
+      glm::dvec3 lo, hi;
+      for (int a = 0, code = box; a < 3; ++a, code /= 10) {
+        int k = code % 10, i = 0;
+        while (k >= 4 - i) k -= 4 - i++;
+        lo[a] = i / 4.0;
+        hi[a] = (i + 1 + k) / 4.0;
+      }
+      const nut::Coverage coverage = nut::solidCoverage(s, lo, hi);
+      ++counts[static_cast<int>(coverage)];
+      bool anyIn = false, anyOut = false, anyInStrictly = false;
+      for (int z = 0; z < kSamples; ++z)
+        for (int y = 0; y < kSamples; ++y)
+          for (int x = 0; x < kSamples; ++x) {
+            const glm::dvec3 t = glm::dvec3(x, y, z) / double(kSamples - 1);
+            const glm::dvec3 p = lo + t * (hi - lo);
+            const bool in = nut::solidContains(s, p);
+            anyIn |= in;
+            anyOut |= !in;
+            const glm::dvec3 inner = lo + (0.001 + 0.998 * t) * (hi - lo);
+            anyInStrictly |= nut::solidContains(s, inner);
+          }
+      const std::string where = nut::solidName(s) + " box " + std::to_string(box);
+      if (coverage == nut::Coverage::All) {
+        EXPECT_FALSE(anyOut) << where;
+      } else if (coverage == nut::Coverage::None) {
+        EXPECT_FALSE(anyInStrictly) << where;
+      } else {
+        EXPECT_TRUE(anyIn && anyOut) << where;
+      }
+    }
+    // The box solid covers every box; the others have boxes of all three kinds.
+    if (index == 0) {
+      EXPECT_EQ(counts[static_cast<int>(nut::Coverage::All)], 1000);
+    } else {
+      for (int c = 0; c < 3; ++c) EXPECT_GT(counts[c], 0) << nut::solidName(s) << " coverage " << c;
+    }
+  }
+}

@@ -22,6 +22,7 @@
 #include <limits>
 #include <numbers>
 
+#include <glm/common.hpp>
 #include <glm/geometric.hpp>
 
 namespace nut {
@@ -244,6 +245,18 @@ bool solidContains(Solid s, const glm::dvec3& p) {
       regionValue(shape.region, signVec<double>(shape) * p + offsetVec<double>(shape));
   // The surface value == 1 belongs to both a solid and its inverse: exact, no epsilon needed.
   return shape.inverse ? value >= 1 : value <= 1;
+}
+
+Coverage solidCoverage(Solid s, const glm::dvec3& lo, const glm::dvec3& hi, double epsilon) {
+  const Shape& shape = shapeOf(s);
+  // Each primed coordinate is p or 1 - p, so the box maps to a box in q, and the region value
+  // grows with every q (q >= 0): its least and greatest values are at two opposite corners.
+  const glm::dvec3 a = signVec<double>(shape) * lo + offsetVec<double>(shape);
+  const glm::dvec3 b = signVec<double>(shape) * hi + offsetVec<double>(shape);
+  const double least = regionValue(shape.region, glm::min(a, b)), greatest = regionValue(shape.region, glm::max(a, b));
+  const bool inP = greatest <= 1 + epsilon, outOfP = least >= 1 - epsilon;
+  if (!inP && !outOfP) return Coverage::Part;
+  return inP != shape.inverse ? Coverage::All : Coverage::None;
 }
 
 template <typename T>

@@ -23,7 +23,12 @@
 #include <optional>
 #include <string>
 
+#include <glm/common.hpp>
+#include <glm/mat3x3.hpp>
+#include <glm/matrix.hpp>
+
 #include <nut/format.hpp>
+#include <nut/solids.hpp>
 #include <nut/units.hpp>
 
 namespace nut::converter {
@@ -58,12 +63,19 @@ namespace {
 constexpr int kMaxDepth = 24;
 // Repeats longer than this many layers per period are not searched for.
 constexpr int kMaxPeriod = 64;
+// A surface within this (in a cell's unit cube) of a part's corner only touches the part.
+constexpr double kCoverageEpsilon = 1e-6;
 
-// What a part of a block becomes in its parent: a plain cell, or a redirection to a block.
+// What a part of a block becomes in its parent: a plain cell, or a redirection to a block (a
+// block of its own, or the block a part that is one redirection cell shows, placed as it was).
 struct Part {
   Cell cell;                 // when target is empty
   std::optional<BlockId> target;
   std::array<bool, 3> wrap{false, false, false};
+  glm::dvec3 offsetM{0.0};
+  Rotation rotation;
+
+  bool placedAsItself() const { return offsetM == glm::dvec3(0.0) && rotation == Rotation{} && wrap == std::array<bool, 3>{}; }
 };
 
 
@@ -83,6 +95,23 @@ Strides stridesOf(const Block& block, int a) {
 // A box or an empty cell looks the same however it is stretched; other solids do not.
 bool stretchable(const Cell& c) {
   return c.kind == CellKind::Empty || (c.kind == CellKind::Solid && c.solid.index == 0);
+}
+
+// Whether `upper`, the neighbour of `lower` along axis a (lower being widthM wide along a), goes
+// on showing what lower shows, so that the two may be one cell: equal boxes or empty cells, or
+// redirections placing the same target at the same place of b (the target is clipped by the
+// cell, so the merged cell shows the union of the two views). A round corner or dome held by a
+// sub-block redirects each cell its box is cut into with its own offset; boundaries that only
+// cut such a box go, like those that only cut a wall.
+bool continues(const Block& b, const Cell& lower, const Cell& upper, int a, double widthM) {
+  if (lower == upper) return stretchable(lower);
+  if (lower.kind != CellKind::Redirection || upper.kind != CellKind::Redirection) return false;
+  const Redirection& l = b.redirections[lower.redirection];
+  const Redirection& u = b.redirections[upper.redirection];
+  if (l.target != u.target || !(l.rotation == u.rotation) || l.wrap != u.wrap) return false;
+  for (int o = 0; o < 3; ++o)
+    if (toUnits(u.offsetM[o]) != toUnits(l.offsetM[o] - (o == a ? widthM : 0.0))) return false;
+  return true;
 }
 
 bool sameLayers(const Block& b, const Strides& st, int i, int j) {
@@ -122,14 +151,16 @@ LayerSummary summarizeLayers(const Block& b) {
   return s;
 }
 
-// Whether layers i and i + 1 hold the same boxes and empty cells.
-bool mergeableLayers(const Block& b, const Strides& st, int i) {
+// Whether every cell of layer i + 1 along axis a continues its neighbour in layer i.
+bool mergeableLayers(const Block& b, const Strides& st, int a, int i) {
   const Cell* x = b.cells.data() + static_cast<std::size_t>(i) * st.a;
   const Cell* y = x + st.a;
+  const auto& bounds = b.boundsM[static_cast<std::size_t>(a)];
+  const double width = bounds[static_cast<std::size_t>(i + 1)] - bounds[static_cast<std::size_t>(i)];
   for (int k = 0; k < st.nc; ++k)
     for (int l = 0; l < st.nb; ++l) {
       const std::size_t o = static_cast<std::size_t>(k) * st.c + static_cast<std::size_t>(l) * st.b;
-      if (!(x[o] == y[o]) || !stretchable(x[o])) return false;
+      if (!continues(b, x[o], y[o], a, width)) return false;
     }
   return true;
 }
@@ -144,7 +175,7 @@ void simplify(Block& b) {
       if (n < 2) continue;
       std::vector<bool> keepBoundary(static_cast<std::size_t>(n + 1), true);  // boundary i sits before layer i
       const Strides st = stridesOf(b, a);
-      for (int i = 1; i < n; ++i) keepBoundary[static_cast<std::size_t>(i)] = !mergeableLayers(b, st, i - 1);
+      for (int i = 1; i < n; ++i) keepBoundary[static_cast<std::size_t>(i)] = !mergeableLayers(b, st, a, i - 1);
       if (std::all_of(keepBoundary.begin(), keepBoundary.end(), [](bool k) { return k; })) continue;
       // Rebuild with the kept layers (the first layer of each merged run stands for it).
       std::vector<int> layers;
@@ -260,7 +291,9 @@ NeedTable neededBoundaries(const Block& b) {
         for (int d = 0; d < 3; ++d) {
           if (at[static_cast<std::size_t>(d)] == 0) continue;
           const Cell& lower = b.cells[index - step[static_cast<std::size_t>(d)]];
-          if (lower == b.cells[index] && stretchable(lower)) continue;
+          const auto& bounds = b.boundsM[static_cast<std::size_t>(d)];
+          const auto i = static_cast<std::size_t>(at[static_cast<std::size_t>(d)]);
+          if (continues(b, lower, b.cells[index], d, bounds[i] - bounds[i - 1])) continue;
           for (int a = 0; a < 3; ++a) {
             if (a == d) continue;
             const int o = (a + 1) % 3 == d ? 0 : 1;
@@ -319,15 +352,83 @@ std::optional<Cut> findCut(const Block& b) {
   return best;
 }
 
+// The plain cell (a box or empty) that redirection cell `at` of b shows, when it shows one: the
+// target's cells under it are all that box or empty, solids counting by what they fill of the
+// part the cell shows (a cell beside a round corner, on one side of its arc). Tiled or yawed
+// placements, and parts reaching out of the target, are left as they are.
+std::optional<Cell> plainView(const Hierarchy& h, const Block& b, const std::array<int, 3>& at) {
+  const Redirection& r = b.redirections[b.cell(at[0], at[1], at[2]).redirection];
+  if (r.rotation.yaw != 0 || r.wrap != std::array<bool, 3>{}) return std::nullopt;
+  const Block& target = h.blocks[r.target];
+  glm::dvec3 size;
+  for (int a = 0; a < 3; ++a)
+    size[a] = b.boundsM[static_cast<std::size_t>(a)][static_cast<std::size_t>(at[static_cast<std::size_t>(a)] + 1)] -
+              b.boundsM[static_cast<std::size_t>(a)][static_cast<std::size_t>(at[static_cast<std::size_t>(a)])];
+  // The cell's box in the target's frame: R^-1 (p - O) at two opposite corners (R permutes axes).
+  const glm::dmat3 inverse = glm::transpose(glm::dmat3(cubeRotationMatrix(r.rotation.cube)));
+  const glm::dvec3 c0 = inverse * (-r.offsetM), c1 = inverse * (size - r.offsetM);
+  const glm::dvec3 lo = glm::min(c0, c1), hi = glm::max(c0, c1);
+  const double slack = 0.5 * format::kMetresPerUnit;
+  std::array<int, 3> first{}, last{};
+  for (int a = 0; a < 3; ++a) {
+    const auto& bounds = target.boundsM[static_cast<std::size_t>(a)];
+    if (lo[a] < -slack || hi[a] > bounds.back() + slack) return std::nullopt;
+    first[static_cast<std::size_t>(a)] = std::max(0, static_cast<int>(std::upper_bound(bounds.begin(), bounds.end(), lo[a] + slack) - bounds.begin()) - 1);
+    last[static_cast<std::size_t>(a)] = std::min(target.cellCount(a) - 1, static_cast<int>(std::lower_bound(bounds.begin(), bounds.end(), hi[a] - slack) - bounds.begin()) - 1);
+  }
+  std::optional<Cell> seen;
+  for (int z = first[2]; z <= last[2]; ++z)
+    for (int y = first[1]; y <= last[1]; ++y)
+      for (int x = first[0]; x <= last[0]; ++x) {
+        Cell c = target.cell(x, y, z);
+        if (c.kind == CellKind::Redirection) return std::nullopt;
+        if (c.kind == CellKind::Solid && c.solid.index != 0) {
+          // The part of the cell's unit cube that `at` shows.
+          const std::array<int, 3> t{x, y, z};
+          glm::dvec3 unitLo, unitHi;
+          for (int a = 0; a < 3; ++a) {
+            const auto& bounds = target.boundsM[static_cast<std::size_t>(a)];
+            const double from = bounds[static_cast<std::size_t>(t[static_cast<std::size_t>(a)])];
+            const double width = bounds[static_cast<std::size_t>(t[static_cast<std::size_t>(a)] + 1)] - from;
+            unitLo[a] = std::clamp((lo[a] - from) / width, 0.0, 1.0);
+            unitHi[a] = std::clamp((hi[a] - from) / width, 0.0, 1.0);
+          }
+          const Coverage coverage = solidCoverage(c.solid, unitLo, unitHi, kCoverageEpsilon);
+          if (coverage == Coverage::Part) return std::nullopt;
+          c = coverage == Coverage::All ? Cell::solidCell(Solid{0}, c.material, c.texture) : Cell::empty();
+        }
+        if (seen && !(*seen == c)) return std::nullopt;
+        seen = c;
+      }
+  return seen;
+}
+
+// Replaces the redirection cells of b to blocks [0, pieces) (the solid grid's sub-blocks of round
+// pieces; blocks a person selected stay redirected to) that show a plain cell by that cell; true
+// when any did.
+bool showPlainCells(const Hierarchy& h, Block& b, BlockId pieces) {
+  bool changed = false;
+  for (int z = 0; z < b.cellCount(2); ++z)
+    for (int y = 0; y < b.cellCount(1); ++y)
+      for (int x = 0; x < b.cellCount(0); ++x)
+        if (const Cell& c = b.cell(x, y, z); c.kind == CellKind::Redirection && b.redirections[c.redirection].target < pieces)
+          if (const auto plain = plainView(h, b, {x, y, z})) {
+            b.cell(x, y, z) = *plain;
+            changed = true;
+          }
+  return changed;
+}
+
 class Decomposer {
  public:
-  Decomposer(Hierarchy& h, const BlockOptions& options, BlockStats& stats) : h_(h), options_(options), stats_(stats) {}
+  Decomposer(Hierarchy& h, BlockId pieces, const BlockOptions& options, BlockStats& stats)
+      : h_(h), pieces_(pieces), options_(options), stats_(stats) {}
 
   // What block b becomes in its parent's cell.
   Part decompose(Block b, int depth) {
     simplify(b);
-    if (auto uniform = uniformCell(b)) return {*uniform, std::nullopt, {false, false, false}};
-    if (depth >= kMaxDepth || b.cells.size() <= static_cast<std::size_t>(options_.minSavedCells)) return emit(std::move(b));
+    if (auto part = wholeBlockAsPart(b)) return *part;
+    if (depth >= kMaxDepth || b.cells.size() <= static_cast<std::size_t>(options_.minSavedCells)) return leaf(std::move(b));
 
     std::optional<Run> run;
     const LayerSummary summary = summarizeLayers(b);
@@ -335,15 +436,36 @@ class Decomposer {
       if (auto r = findRun(b, summary, a, options_.toleranceM); r && (!run || r->savedCells > run->savedCells)) run = r;
     const std::optional<Cut> cut = options_.cuts ? findCut(b) : std::nullopt;
     const long long runSaved = run ? run->savedCells : 0, cutSaved = cut ? cut->savedCells : 0;
-    if (std::max(runSaved, cutSaved) < options_.minSavedCells) return emit(std::move(b));
+    if (std::max(runSaved, cutSaved) < options_.minSavedCells) return leaf(std::move(b));
     if (runSaved >= cutSaved) return repeat(b, *run, depth);
     return split(b, *cut, depth);
   }
 
  private:
+  // A block that is one plain cell, or one redirection, needs no block of its own.
+  static std::optional<Part> wholeBlockAsPart(const Block& b) {
+    if (auto uniform = uniformCell(b)) return Part{*uniform, std::nullopt};
+    if (b.cells.size() == 1 && b.cells[0].kind == CellKind::Redirection) {
+      const Redirection& r = b.redirections[b.cells[0].redirection];
+      return Part{Cell::empty(), r.target, r.wrap, r.offsetM, r.rotation};
+    }
+    return std::nullopt;
+  }
+
+  // A block the search cuts no further. Its redirection cells on one side of a round piece's
+  // surface kept the piece's placement so far, which let them merge across boundaries nothing
+  // else needed; now they become plain cells, which merge with the walls beside them.
+  Part leaf(Block b) {
+    if (showPlainCells(h_, b, pieces_)) {
+      simplify(b);
+      if (auto part = wholeBlockAsPart(b)) return *part;
+    }
+    return emit(std::move(b));
+  }
+
   Part emit(Block b) {
     const BlockId id = h_.addBlock(std::move(b));
-    return {Cell::empty(), id, {false, false, false}};
+    return {Cell::empty(), id};
   }
 
   // A parent stacking `parts` along axis a at `bounds` (the other axes one cell each).
@@ -358,7 +480,7 @@ class Decomposer {
         continue;
       }
       parent.cells[i] = Cell::redirect(static_cast<std::uint32_t>(parent.redirections.size()));
-      parent.redirections.push_back(Redirection{*parts[i].target, glm::dvec3(0.0), Rotation{}, parts[i].wrap});
+      parent.redirections.push_back(Redirection{*parts[i].target, parts[i].offsetM, parts[i].rotation, parts[i].wrap});
     }
     return emit(std::move(parent));
   }
@@ -380,7 +502,8 @@ class Decomposer {
     lo[static_cast<std::size_t>(a)] = run.start;
     hi[static_cast<std::size_t>(a)] = run.start + run.period;
     Part period = decompose(subBlock(b, lo, hi), depth + 1);
-    if (!period.target) period = emit(subBlock(b, lo, hi));  // a uniform period merges in simplify; kept for safety
+    // The period tiles as a block of its own size (a uniform period merges in simplify; kept for safety).
+    if (!period.target || !period.placedAsItself()) period = emit(subBlock(b, lo, hi));
     period.wrap[static_cast<std::size_t>(a)] = true;
     parts.push_back(period);
     cuts.push_back(bounds[static_cast<std::size_t>(end)]);
@@ -415,6 +538,7 @@ class Decomposer {
   }
 
   Hierarchy& h_;
+  BlockId pieces_;
   const BlockOptions& options_;
   BlockStats& stats_;
 };
@@ -626,18 +750,23 @@ Result<Hierarchy> buildHierarchy(Block g0, std::vector<Material> materials, cons
   stats.bytesBefore = estimatedBytes(g0);
   for (const WorldBox& box : options.manual) extractManual(h, g0, box, originM, options.toleranceM, stats);
   if (!options.automatic) {
+    showPlainCells(h, g0, static_cast<BlockId>(subBlocks.size()));
     simplify(g0);
     h.root = h.addBlock(std::move(g0));
   } else {
     const glm::dvec3 size = g0.sizeM();
-    Decomposer decomposer(h, options, stats);
+    Decomposer decomposer(h, static_cast<BlockId>(subBlocks.size()), options, stats);
     const Part root = decomposer.decompose(std::move(g0), 0);
-    if (root.target) {
+    if (root.target && root.placedAsItself()) {
       h.root = *root.target;
     } else {
-      // The whole building is one box (or nothing): a block of one cell.
+      // The whole building is one box, nothing, or one block placed in it: a block of one cell.
       Block one = Block::fromSizes({{{size.x}, {size.y}, {size.z}}});
       one.cells[0] = root.cell;
+      if (root.target) {
+        one.cells[0] = Cell::redirect(0);
+        one.redirections.push_back(Redirection{*root.target, root.offsetM, root.rotation, root.wrap});
+      }
       h.root = h.addBlock(std::move(one));
     }
   }

@@ -388,25 +388,6 @@ bool Builder::subBlockFits(int piece, const LazyWinding& winding) const {
   return true;
 }
 
-int Builder::arcSide(const QuadricPiece& q, const std::array<int, 3>& cell) const {
-  const int u = kU[q.e], v = kV[q.e];
-  // Nearest and farthest points of the cell from the axis, in units of the radius.
-  const auto span = [&](int axis, double centre, double radius) {
-    const auto& B = bounds[static_cast<std::size_t>(axis)];
-    const double a = (B[static_cast<std::size_t>(cell[static_cast<std::size_t>(axis)])] - centre) / radius;
-    const double b = (B[static_cast<std::size_t>(cell[static_cast<std::size_t>(axis)] + 1)] - centre) / radius;
-    return std::pair(std::min(std::abs(a), std::abs(b)), std::max(std::abs(a), std::abs(b)));
-  };
-  const auto [uNear, uFar] = span(u, q.centre.x, q.radius.x);
-  const auto [vNear, vFar] = span(v, q.centre.y, q.radius.y);
-  // A quarter cylinder's cells span no distance along e.
-  const auto [eNear, eFar] = q.octant() ? span(q.e, q.eSign > 0 ? q.e0 : q.e1, q.e1 - q.e0) : std::pair(0.0, 0.0);
-  if (q.planar) return uFar + vFar + eFar <= 1 ? -1 : uNear + vNear + eNear >= 1 ? 1 : 0;
-  if (std::hypot(uFar, vFar, eFar) <= 1) return -1;
-  if (std::hypot(uNear, vNear, eNear) >= 1) return 1;
-  return 0;
-}
-
 bool Builder::solidAt(std::size_t cell, std::span<const dvec3> points) const {
   if (subPiece[cell] < 0) return shape[cell] >= 0;
   const QuadricPiece& q = quadrics[static_cast<std::size_t>(subPiece[cell])];

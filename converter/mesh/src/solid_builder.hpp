@@ -286,9 +286,6 @@ struct Builder {
   // Whether the cell is solid at all the points (grid frame) on or in it: a cell showing a
   // sub-block is solid where S is (within the tolerance), any other where its shape is.
   bool solidAt(std::size_t cell, std::span<const dvec3> points) const;
-  // Which side of a piece's arc (an octant's surface) a cell of its box lies: -1 the axis side, 1
-  // the far side, 0 the arc passes through it.
-  int arcSide(const QuadricPiece& q, const std::array<int, 3>& cell) const;
   void trimCutCells(const LazyWinding& winding);
   bool shownByMesh(std::uint32_t face) const;
   // The parts of slope face f over cells its plane covers only partly (SlopePlane::partial),

@@ -315,16 +315,9 @@ void Builder::assignMaterials(Block& block, std::vector<Block>& subBlocks, const
     for (c[2] = q.lo[2]; c[2] < q.hi[2]; ++c[2])
       for (c[1] = q.lo[1]; c[1] < q.hi[1]; ++c[1])
         for (c[0] = q.lo[0]; c[0] < q.hi[0]; ++c[0]) {
-          // A cell the arc does not pass through is all one side of it: it holds that side of
-          // its layer of S as a plain cell, which needs no record and merges with its neighbours.
-          const int side = arcSide(q, c);
-          const Cell& layer = layers[uniform ? 0 : q.layerOf(c[static_cast<std::size_t>(q.e)])];
-          if (side != 0) {
-            const bool solid = layer.solid.index == 0 || (side < 0) == convexQuadric(solidGroup(layer.solid));
-            block.cells[index(c)] = solid ? Cell::box(layer.material) : Cell::empty();
-            stats.solidCells += solid;
-            continue;
-          }
+          // Every cell of the box shows its part of S, also where the arc does not pass: cells
+          // placing S at the same place merge when the boundaries between them go, and the block
+          // stage turns those left on one side of the arc into plain cells (blocks.cpp).
           glm::dvec3 offset(0.0);
           for (int a = 0; a < 3; ++a)
             if (a != q.e || !uniform || q.octant())

@@ -65,6 +65,13 @@ double solidVolume(Solid s);
 // Whether the unit-cube point p lies inside the solid (boundary counts as inside).
 bool solidContains(Solid s, const glm::dvec3& p);
 
+// How much of the box [lo, hi] (inside the unit cube) the solid fills: all of it, none of it, or
+// part. A surface that only touches the box (within `epsilon` of the region value) counts as not
+// entering it. Producers use it to replace a cell that shows one side of a curved solid by a plain
+// box or empty cell.
+enum class Coverage : std::uint8_t { None, Part, All };
+Coverage solidCoverage(Solid s, const glm::dvec3& lo, const glm::dvec3& hi, double epsilon = 1e-9);
+
 template <typename T>
 struct SolidHit {
   T t;                      // ray parameter of the first point inside the solid

@@ -55,8 +55,8 @@ struct BlockStats {
   long long bytesBefore = 0, bytesAfter = 0;   // estimated by the cost model
 };
 
-// Merges neighbouring layers that hold the same boxes and empty cells: their boundary is needed
-// by nothing inside this block. buildHierarchy does it to every block; a caller building several
+// Merges neighbouring layers that hold the same boxes and empty cells, or redirections that place
+// the same block at the same place: their boundary is needed by nothing inside this block. buildHierarchy does it to every block; a caller building several
 // hierarchies from one grid can do it once first.
 void simplify(Block& b);
 
