@@ -1,6 +1,7 @@
 // `nut convert` as a user runs it: outputs (HNI with the world origin, complementary mesh, report
 // JSON), one HNI per object and city.json with -o FOLDER, the progress bar's absence with --quiet,
-// manual blocks, and the exit codes: 2 for unreadable input, 1 for invalid input or usage.
+// manual blocks, and the exit codes: 2 for unreadable input, 1 for invalid input or usage; and the
+// lookup `nut render` uses by default to look at the result.
 #include <gtest/gtest.h>
 
 #include <cstdio>
@@ -127,6 +128,25 @@ TEST(ConvertCli, ExitCodes) {
 
   r = nut("convert " + sample("house.obj") + " -o " + out("h.png") + " --tolerance -1");
   EXPECT_EQ(r.exitCode, 1);
+}
+
+// `nut render`, with which users look at what `nut convert` wrote: the CPU ray caster reads the
+// exact metadata rows unless told otherwise, the GL one the paper's heuristic.
+TEST(RenderCli, DefaultLookupFollowsTheBackend) {
+  const std::string hni = std::string(NUT_SOURCE_DIR) + "/samples/hni/building.png";
+  const auto lookupOf = [](const std::string& statsPath) {
+    std::ifstream in(statsPath);
+    return nlohmann::json::parse(in).at("lookup").get<std::string>();
+  };
+  CliRun r = nut("render " + hni + " -o " + out("render-default.png") + " --size 160x90 --stats " + out("render-default.json"));
+  ASSERT_EQ(r.exitCode, 0) << r.stderrText;
+  EXPECT_EQ(lookupOf(out("render-default.json")), "exact");
+  r = nut("render " + hni + " -o " + out("render-exact.png") + " --size 160x90 --lookup exact");
+  ASSERT_EQ(r.exitCode, 0) << r.stderrText;
+  EXPECT_EQ(readPng(out("render-default.png"))->image, readPng(out("render-exact.png"))->image);
+  r = nut("render " + hni + " -o " + out("render-gl.png") + " --size 160x90 --backend gl --stats " + out("render-gl.json"));
+  ASSERT_EQ(r.exitCode, 0) << r.stderrText;
+  EXPECT_EQ(lookupOf(out("render-gl.json")), "heuristic");
 }
 
 TEST(ConvertCli, HelpHasAnExample) {
