@@ -7,6 +7,8 @@
 
 #include <glm/geometric.hpp>
 
+#include <converter/axis_order.hpp>
+#include <nut/format.hpp>
 #include <nut/units.hpp>
 
 #include "parallel.hpp"
@@ -250,6 +252,31 @@ std::array<std::vector<double>, 3> Builder::materialConflicts(const std::vector<
   return proposals;
 }
 
+namespace {
+
+// Where a piece's sub-block S is shown from: S itself, or an earlier sub-block that is S turned
+// (placed with rotation `cube` at offsetM in S's frame it shows S, as turnBlock defines).
+struct SharedSubBlock {
+  BlockId target = 0;
+  int cube = 0;
+  glm::dvec3 offsetM{0.0};
+};
+
+// The four round corners of a building, or the quarters of a dome or drum, are one S turned:
+// they share one block (one header) and their records carry the turn.
+SharedSubBlock shareTurned(std::vector<Block>& subBlocks, Block s) {
+  for (std::size_t j = 0; j < subBlocks.size(); ++j) {
+    if (subBlocks[j].cells.size() != s.cells.size()) continue;
+    for (int cube = 0; cube < format::kCubeRotationCount; ++cube)
+      if (TurnedBlock turned = turnBlock(s, cube); turned.block == subBlocks[j])
+        return {static_cast<BlockId>(j), cube, turned.offsetM};
+  }
+  subBlocks.push_back(std::move(s));
+  return {static_cast<BlockId>(subBlocks.size() - 1), 0, glm::dvec3(0.0)};
+}
+
+}  // namespace
+
 // Each cell takes the material of largest area among its shares. A quarter-round piece shown by
 // a sub-block becomes S: one cell across, its box's layers along e (a sphere octant or a corner
 // slope: one cell, which its box's cells redirect to offset along e too), each layer taking the
@@ -296,7 +323,6 @@ void Builder::assignMaterials(Block& block, std::vector<Block>& subBlocks, const
     // then shows S from its bottom, so the column shares one record and its cells are equal.
     const bool uniform = std::all_of(layers.begin(), layers.end(), [&](const Cell& c) { return c == layers.front(); });
     if (uniform) layers.resize(1);
-    const auto target = static_cast<BlockId>(subBlocks.size());
     Block s;
     for (int a = 0; a < 3; ++a) {
       const auto& B = bounds[static_cast<std::size_t>(a)];
@@ -309,7 +335,7 @@ void Builder::assignMaterials(Block& block, std::vector<Block>& subBlocks, const
     s.cells = layers;
     for (const Cell& c : layers) (q.planar ? stats.pyramidCells : q.octant() ? stats.sphereOctantCells : stats.quadricCells) += c.solid.index != 0;
     stats.solidCells += static_cast<long long>(layers.size());
-    subBlocks.push_back(std::move(s));
+    const SharedSubBlock shown = shareTurned(subBlocks, std::move(s));
     const auto firstRecord = static_cast<std::ptrdiff_t>(block.redirections.size());
     std::array<int, 3> c{};
     for (c[2] = q.lo[2]; c[2] < q.hi[2]; ++c[2])
@@ -323,7 +349,7 @@ void Builder::assignMaterials(Block& block, std::vector<Block>& subBlocks, const
             if (a != q.e || !uniform || q.octant())
               offset[a] = -snapToUnits(bounds[static_cast<std::size_t>(a)][static_cast<std::size_t>(c[static_cast<std::size_t>(a)])] -
                                        bounds[static_cast<std::size_t>(a)][static_cast<std::size_t>(q.lo[static_cast<std::size_t>(a)])]);
-          const Redirection r{target, offset, Rotation{}, {false, false, false}};
+          const Redirection r{shown.target, offset + shown.offsetM, Rotation{static_cast<std::uint8_t>(shown.cube), 0}, {false, false, false}};
           const auto shared = std::find(block.redirections.begin() + firstRecord, block.redirections.end(), r);
           block.cells[index(c)] = Cell::redirect(static_cast<std::uint32_t>(shared - block.redirections.begin()));
           if (shared == block.redirections.end()) block.redirections.push_back(r);
