@@ -63,6 +63,10 @@ namespace {
 constexpr int kMaxDepth = 24;
 // Repeats longer than this many layers per period are not searched for.
 constexpr int kMaxPeriod = 64;
+// findRecordCut: blocks larger than this are not tried (every cut is built), and a block costs
+// about as much as this many redirection records (a header and metadata against 4 pixels).
+constexpr std::size_t kMaxRecordCutCells = 20000;
+constexpr long long kRecordsPerBlock = 40;
 // A surface within this (in a cell's unit cube) of a part's corner only touches the part.
 constexpr double kCoverageEpsilon = 1e-6;
 
@@ -428,13 +432,14 @@ class Decomposer {
   Part decompose(Block b, int depth) {
     simplify(b);
     if (auto part = wholeBlockAsPart(b)) return *part;
-    if (depth >= kMaxDepth || b.cells.size() <= static_cast<std::size_t>(options_.minSavedCells)) return leaf(std::move(b));
+    if (depth >= kMaxDepth || (b.cells.size() <= static_cast<std::size_t>(options_.minSavedCells) && !showsPieces(b)))
+      return leaf(std::move(b));
 
     std::optional<Run> run;
     const LayerSummary summary = summarizeLayers(b);
     for (int a = 0; a < 3; ++a)
       if (auto r = findRun(b, summary, a, options_.toleranceM); r && (!run || r->savedCells > run->savedCells)) run = r;
-    const std::optional<Cut> cut = options_.cuts ? findCut(b) : std::nullopt;
+    const std::optional<Cut> cut = bestCut(b);
     const long long runSaved = run ? run->savedCells : 0, cutSaved = cut ? cut->savedCells : 0;
     if (std::max(runSaved, cutSaved) < options_.minSavedCells) return leaf(std::move(b));
     if (runSaved >= cutSaved) return repeat(b, *run, depth);
@@ -442,6 +447,54 @@ class Decomposer {
   }
 
  private:
+  // Whether cells of b redirect to the solid grid's sub-blocks of round pieces.
+  bool showsPieces(const Block& b) const {
+    return pieces_ > 0 && std::any_of(b.cells.begin(), b.cells.end(), [&](const Cell& c) {
+      return c.kind == CellKind::Redirection && b.redirections[c.redirection].target < pieces_;
+    });
+  }
+
+  // What b costs as a leaf: cells, and distinct records its cells reference.
+  std::pair<long long, long long> leafCost(Block b) const {
+    simplify(b);
+    if (showPlainCells(h_, b, pieces_)) simplify(b);
+    std::vector<bool> used(b.redirections.size(), false);
+    long long records = 0;
+    for (const Cell& c : b.cells)
+      if (c.kind == CellKind::Redirection && !used[c.redirection]) used[c.redirection] = true, ++records;
+    return {static_cast<long long>(b.cells.size()), records};
+  }
+
+  // The cut in two that saves most when a record counts as many cells as it costs bytes (a
+  // block's cost, which minSavedCells stands for, is about kRecordsPerBlock records): findCut
+  // counts cells only, and a round piece's sub-block cut into many cells by boundaries from a
+  // part nearby (a dome on a roof amid the window columns) costs a record per cell until a cut
+  // separates it. Tried by cutting, on small blocks whose cells redirect to such pieces.
+  std::optional<Cut> findRecordCut(const Block& b) const {
+    if (b.cells.size() > kMaxRecordCutCells || !showsPieces(b)) return std::nullopt;
+    const long long recordCells = std::max(1LL, options_.minSavedCells / kRecordsPerBlock);
+    const auto [cells, records] = leafCost(b);
+    std::optional<Cut> best;
+    for (int a = 0; a < 3; ++a)
+      for (int at = 1; at < b.cellCount(a); ++at) {
+        std::array<int, 3> lo{0, 0, 0}, hi{b.cellCount(0), b.cellCount(1), b.cellCount(2)};
+        hi[static_cast<std::size_t>(a)] = at;
+        const auto [cellsL, recordsL] = leafCost(subBlock(b, lo, hi));
+        lo[static_cast<std::size_t>(a)] = at;
+        hi[static_cast<std::size_t>(a)] = b.cellCount(a);
+        const auto [cellsR, recordsR] = leafCost(subBlock(b, lo, hi));
+        const long long saved = cells - cellsL - cellsR + (records - recordsL - recordsR) * recordCells;
+        if (!best || saved > best->savedCells) best = Cut{a, at, saved};
+      }
+    return best;
+  }
+
+  std::optional<Cut> bestCut(const Block& b) const {
+    if (!options_.cuts) return std::nullopt;
+    const std::optional<Cut> byCells = findCut(b), byRecords = findRecordCut(b);
+    return byRecords && (!byCells || byRecords->savedCells > byCells->savedCells) ? byRecords : byCells;
+  }
+
   // A block that is one plain cell, or one redirection, needs no block of its own.
   static std::optional<Part> wholeBlockAsPart(const Block& b) {
     if (auto uniform = uniformCell(b)) return Part{*uniform, std::nullopt};
