@@ -1,7 +1,7 @@
 // `nut convert` as a user runs it: outputs (HNI with the world origin, complementary mesh, report
 // JSON), one HNI per object and city.json with -o FOLDER, the progress bar's absence with --quiet,
 // manual blocks, and the exit codes: 2 for unreadable input, 1 for invalid input or usage; and the
-// lookup `nut render` uses by default to look at the result.
+// commands users look at the result with: `nut render`'s default lookup, `nut info --blocks --bytes`.
 #include <gtest/gtest.h>
 
 #include <cstdio>
@@ -147,6 +147,28 @@ TEST(RenderCli, DefaultLookupFollowsTheBackend) {
   r = nut("render " + hni + " -o " + out("render-gl.png") + " --size 160x90 --backend gl --stats " + out("render-gl.json"));
   ASSERT_EQ(r.exitCode, 0) << r.stderrText;
   EXPECT_EQ(lookupOf(out("render-gl.json")), "heuristic");
+}
+
+// `nut info --blocks --bytes`, with which users see where an HNI's bytes go.
+TEST(InfoCli, ListsBlocksAndWhatEachKindOfRecordCosts) {
+  const std::string hni = std::string(NUT_SOURCE_DIR) + "/samples/hni/facade.png";
+  const CliRun r = nut("info " + hni + " --json --blocks --bytes > " + out("facade-info.json"));
+  ASSERT_EQ(r.exitCode, 0) << r.stderrText;
+  std::ifstream in(out("facade-info.json"));
+  const nlohmann::json j = nlohmann::json::parse(in);
+  EXPECT_EQ(j.at("block_list").size(), j.at("blocks").get<std::size_t>());
+  long long cells = 0;
+  for (const auto& b : j.at("block_list")) cells += b.at("cells")[0].get<long long>() * b.at("cells")[1].get<long long>() * b.at("cells")[2].get<long long>();
+  EXPECT_EQ(cells, j.at("cells").get<long long>());
+  const auto& kinds = j.at("png_bytes_by_record").at("kinds");
+  EXPECT_EQ(kinds.at("data components").at("pixels").get<long long>(), cells);
+  // Every kind of record costs something, and no part costs more than the whole.
+  const long long total = j.at("png_bytes_by_record").at("pixels_png_bytes").get<long long>();
+  for (const auto& [name, kind] : kinds.items()) {
+    EXPECT_GT(kind.at("png_bytes").get<long long>(), 0) << name;
+    EXPECT_LT(kind.at("png_bytes").get<long long>(), total) << name;
+  }
+  EXPECT_LT(total, j.at("bytes_png").get<long long>());  // the file adds its chunks
 }
 
 TEST(ConvertCli, HelpHasAnExample) {

@@ -172,5 +172,46 @@ TEST(HniCompile, RootFileRecordAndMagic) {
   EXPECT_LE(image->width, format::kMaxSearchWidth);
 }
 
+// pixelKinds (nut info --bytes, the waste figure) against what decode() and the header reader
+// find: one data pixel per cell, 12 per header, 2 per material, 4 per distinct redirection
+// record, both rows of every block's metadata items where the headers point.
+TEST(HniStats, PixelKindsCountEveryRecordOnce) {
+  for (std::uint64_t seed = 0; seed < 20; ++seed) {
+    auto image = compile(testing::randomHierarchy(7000 + seed));
+    ASSERT_TRUE(image.ok()) << image.error().message;
+    const auto h = decode(*image);
+    ASSERT_TRUE(h.ok()) << h.error().message;
+    const std::vector<PixelKind> kinds = pixelKinds(*image);
+    std::array<long long, kPixelKindCount> count{};
+    for (PixelKind k : kinds) ++count[static_cast<std::size_t>(k)];
+    const auto of = [&](PixelKind k) { return count[static_cast<std::size_t>(k)]; };
+    long long cells = 0, records = 0;
+    for (const Block& b : h->blocks) {
+      cells += static_cast<long long>(b.cells.size());
+      records += static_cast<long long>(b.redirections.size());
+    }
+    EXPECT_EQ(of(PixelKind::DataComponent), cells) << "seed " << seed;
+    EXPECT_EQ(of(PixelKind::Header), format::kHeaderPixels * static_cast<long long>(h->blocks.size())) << "seed " << seed;
+    EXPECT_EQ(of(PixelKind::Material), format::kMaterialPixels * static_cast<long long>(h->materials.size())) << "seed " << seed;
+    // decode() gives each block its own records; the file stores equal ones once.
+    EXPECT_LE(of(PixelKind::RedirectionRecord), format::kRedirectionPixels * records) << "seed " << seed;
+    EXPECT_EQ(of(PixelKind::RedirectionRecord) % format::kRedirectionPixels, 0) << "seed " << seed;
+    EXPECT_EQ(of(PixelKind::FileRecord), format::kFileRecordPixels);
+    EXPECT_EQ(of(PixelKind::MetadataRow), of(PixelKind::ExactRow)) << "seed " << seed;
+    const HniView view(*image);
+    const FileRecord file = view.fileRecord();
+    for (int b = 0; b < file.blockCount; ++b) {
+      const BlockHeader header = view.header(view.blockAddress(file, b));
+      for (int a = 0; a < 3; ++a) {
+        const TexelAddress m = header.meta[static_cast<std::size_t>(a)];
+        const auto at = [&](int u, int v) { return kinds[static_cast<std::size_t>(v) * static_cast<std::size_t>(image->width) + static_cast<std::size_t>(u)]; };
+        EXPECT_EQ(at(m.u, m.v), PixelKind::MetadataRow);
+        EXPECT_EQ(at(m.u + header.metaPixels[a] - 1, m.v + 1), PixelKind::ExactRow);
+      }
+    }
+    EXPECT_EQ(computeStats(*image).usedPixels, static_cast<long long>(kinds.size()) - of(PixelKind::Unused));
+  }
+}
+
 }  // namespace
 }  // namespace nut

@@ -2,6 +2,9 @@
 // images, and measuring them. The layout is docs/FORMAT.md; constants are nut/format.hpp.
 #pragma once
 
+#include <cstdint>
+#include <vector>
+
 #include <nut/error.hpp>
 #include <nut/format.hpp>
 #include <nut/hierarchy.hpp>
@@ -50,5 +53,25 @@ struct HniStats {
 
 // Statistics of a valid image (validate() it first), computed from the records themselves.
 HniStats computeStats(const Image& image);
+
+// The record each pixel of a valid image belongs to. Metadata items have two rows: the
+// (i, f, j_left, j_right) row and the exact row below it (docs/FORMAT.md).
+enum class PixelKind : std::uint8_t {
+  Unused,
+  FileRecord,
+  BlockTable,
+  Header,
+  MetadataRow,
+  ExactRow,
+  DataComponent,
+  RedirectionRecord,
+  Material,
+  TextureInfo,
+};
+inline constexpr int kPixelKindCount = 10;
+// "data component", "exact row", ...
+const char* pixelKindName(PixelKind kind);
+// Row-major, width * height entries; the basis of the waste figure and of `nut info --bytes`.
+std::vector<PixelKind> pixelKinds(const Image& image);
 
 }  // namespace nut
