@@ -12,6 +12,7 @@
 
 #include <converter/assemble.hpp>
 #include <converter/blocks.hpp>
+#include <converter/share_axes.hpp>
 #include <nut/hni.hpp>
 #include <nut/solids.hpp>
 
@@ -498,6 +499,60 @@ TEST(RoundPieces, ACutSeparatesAPieceFromTheBoundariesThatCutItsBox) {
     }
     expectSameOccupancy(reference, *h, 22);
   }
+}
+
+// Two storeys of one facade, 10 m long, whose x boundaries differ by a door (7 to 7.02 m in one)
+// and a window frame (1 to 1.05 m in the other): after shareAxes both have every boundary, so
+// compile() stores one x item for both, and both show what they showed. A redirection cell cut
+// by a new boundary shows the rest of its target from the right place.
+TEST(ShareAxes, StoreysOfAFacadeShareOneItemAndShowTheSame) {
+  Hierarchy h;
+  h.materials = {Material{}, Material{200, 200, 200}, Material{40, 60, 90}};
+  const BlockId target = h.addBlock(blockFromBounds(std::array<std::vector<double>, 3>{{{0.0, 3.0, 6.0}, {0.0, 1.0}, {0.0, 1.0}}},
+                                                    [](const glm::dvec3& c) { return Cell::box(c.x < 3.0 ? 1 : 2); }));
+  const std::vector<double> lower{0.0, 1.0, 4.0, 7.0, 7.02, 10.0}, upper{0.0, 1.0, 1.05, 4.0, 10.0};
+  Block a = blockFromBounds(std::array<std::vector<double>, 3>{lower, {0.0, 3.0}, {0.0, 0.3}},
+                            [](const glm::dvec3& c) { return c.x > 7.0 && c.x < 7.02 ? Cell::empty() : Cell::box(1); });
+  Block b = blockFromBounds(std::array<std::vector<double>, 3>{upper, {0.0, 3.0}, {0.0, 0.3}},
+                            [](const glm::dvec3& c) { return c.x > 1.0 && c.x < 1.05 ? Cell::box(2) : Cell::box(1); });
+  // b's last cell, [4, 10), shows the target from 1 m into it: cut at 7 and 7.02 it must go on.
+  b.cell(3, 0, 0) = Cell::redirect(0);
+  b.redirections.push_back(Redirection{target, glm::dvec3(-1.0, 0.0, 0.0), Rotation{}, {false, false, false}});
+  const BlockId ia = h.addBlock(a), ib = h.addBlock(b);
+  Block root = blockFromBounds(std::array<std::vector<double>, 3>{{{0.0, 10.0}, {0.0, 3.0, 6.0}, {0.0, 0.3}}}, [](const glm::dvec3&) { return Cell::empty(); });
+  for (int y = 0; y < 2; ++y) {
+    root.cell(0, y, 0) = Cell::redirect(static_cast<std::uint32_t>(y));
+    root.redirections.push_back(Redirection{y == 0 ? ia : ib, glm::dvec3(0.0), Rotation{}, {false, false, false}});
+  }
+  h.root = h.addBlock(root);
+  const Hierarchy before = h;
+
+  EXPECT_EQ(shareAxes(h, 0.002), 2);
+  EXPECT_EQ(h.blocks[ia].boundsM[0], h.blocks[ib].boundsM[0]);
+  EXPECT_EQ(h.blocks[ia].cellCount(0), 6);
+  std::mt19937 rng(31);
+  std::uniform_real_distribution<double> d(0.0, 1.0);
+  for (int i = 0; i < 20000; ++i) {
+    const glm::dvec3 p(10.0 * d(rng), 6.0 * d(rng), 0.3 * d(rng));
+    ASSERT_EQ(lookup(before, before.root, p), lookup(h, h.root, p)) << p.x << "," << p.y << "," << p.z;
+  }
+  // The two x items are one in the HNI.
+  const auto image = compile(h);
+  ASSERT_TRUE(image.ok()) << image.error().message;
+  EXPECT_LT(computeStats(*image).usedPixels, computeStats(*compile(before)).usedPixels);
+}
+
+TEST(ShareAxes, ACellThatLooksDifferentCutIsNotCut) {
+  // The same storeys, but the lower one's cell [1, 4) a wedge sloping along x: cut at 1.05 it
+  // would show another slope, so neither axis is refined.
+  Hierarchy h;
+  h.materials = {Material{}, Material{200, 200, 200}};
+  const std::vector<double> lower{0.0, 1.0, 4.0, 7.0, 7.02, 10.0}, upper{0.0, 1.0, 1.05, 4.0, 10.0};
+  h.addBlock(blockFromBounds(std::array<std::vector<double>, 3>{lower, {0.0, 3.0}, {0.0, 0.3}}, [](const glm::dvec3& c) {
+    return c.x > 1.0 && c.x < 4.0 ? Cell::solidCell(makeSolid(SolidGroup::Wedge, 2 * 4), 1) : Cell::box(1);  // extruded along z
+  }));
+  h.addBlock(blockFromBounds(std::array<std::vector<double>, 3>{upper, {0.0, 3.0}, {0.0, 0.3}}, [](const glm::dvec3&) { return Cell::box(1); }));
+  EXPECT_EQ(shareAxes(h, 0.002), 0);
 }
 
 }  // namespace

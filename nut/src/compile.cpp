@@ -119,15 +119,7 @@ Result<Image> compile(const Hierarchy& h, const CompileOptions& options) {
       for (std::size_t i = 1; i < bounds.size(); ++i)
         if (bounds[i] <= bounds[i - 1])
           return Error{axisWhere + ": cell " + std::to_string(i - 1) + " is narrower than 1 mm"};
-      const double tolerance = options.heuristicToleranceM / format::kMetresPerUnit;
-      // An axis of one cell has no boundary the heuristic could misplace: one pixel does.
-      const bool hasBoundaries = bounds.size() > 2;
-      const int minPixels =
-          tolerance > 0 && hasBoundaries
-              ? static_cast<int>(std::min<double>(format::kMaxMetadataPixels,
-                                                  std::ceil(static_cast<double>(bounds.back()) / (512.0 * tolerance))))
-              : 1;
-      auto index = buildAxisIndex(bounds, minPixels);
+      auto index = buildAxisIndexWithin(bounds, options.heuristicToleranceM);
       if (!index) return Error{axisWhere + ": " + index.error().message};
       plans[b].axes[static_cast<std::size_t>(a)] = std::move(*index);
     }

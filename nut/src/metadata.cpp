@@ -3,6 +3,7 @@
 #include <nut/metadata.hpp>
 
 #include <algorithm>
+#include <cmath>
 #include <optional>
 #include <string>
 
@@ -62,6 +63,17 @@ std::optional<AxisIndex> tryPixels(std::span<const std::int64_t> bounds, int pix
 }
 
 }  // namespace
+
+Result<AxisIndex> buildAxisIndexWithin(std::span<const std::int64_t> boundsUnits, double heuristicToleranceM) {
+  const double tolerance = heuristicToleranceM / format::kMetresPerUnit;
+  // An axis of one cell has no boundary the heuristic could misplace: one pixel does.
+  const bool hasBoundaries = boundsUnits.size() > 2;
+  const int minPixels = tolerance > 0 && hasBoundaries
+                            ? static_cast<int>(std::min<double>(format::kMaxMetadataPixels,
+                                                                std::ceil(static_cast<double>(boundsUnits.back()) / (512.0 * tolerance))))
+                            : 1;
+  return buildAxisIndex(boundsUnits, minPixels);
+}
 
 Result<AxisIndex> buildAxisIndex(std::span<const std::int64_t> boundsUnits, int minPixels) {
   const int cells = static_cast<int>(boundsUnits.size()) - 1;

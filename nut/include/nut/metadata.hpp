@@ -55,6 +55,10 @@ struct AxisIndex {
 // Fails when no M <= 256 works; the message says why (the caller adds which block and axis).
 Result<AxisIndex> buildAxisIndex(std::span<const std::int64_t> boundsUnits, int minPixels = 1);
 
+// The index compile() builds for an axis: at least the pixels that keep the heuristic lookup
+// within heuristicToleranceM (CompileOptions; up to 256 pixels), one for an axis of one cell.
+Result<AxisIndex> buildAxisIndexWithin(std::span<const std::int64_t> boundsUnits, double heuristicToleranceM);
+
 // Read-only view of one axis's metadata as stored in an HNI: two rows of RGBA8 pixels.
 // Lookups are branch-free: a data-dependent branch on "does this pixel hold a boundary" is a coin
 // toss for random coordinates and cost 2-3x (docs/BENCHMARKS.md, lookup benchmark).

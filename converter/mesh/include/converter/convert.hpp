@@ -70,6 +70,7 @@ struct ConvertReport {
   std::string blockMode;              // the variant kept
   std::vector<VariantReport> variants;
   int splitBlocks = 0;            // blocks added to stay within the format's per-axis limits
+  int sharedAxes = 0;             // block axes refined to share a metadata item (share_axes.hpp)
   HniStats hni;
   std::uintmax_t pngBytes = 0;    // set by writeConversion
   std::size_t complementTriangles = 0;
