@@ -4,7 +4,6 @@
 #include <nut/hni.hpp>
 
 #include <climits>
-#include <cmath>
 #include <map>
 #include <optional>
 #include <string>
