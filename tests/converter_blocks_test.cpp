@@ -555,5 +555,56 @@ TEST(ShareAxes, ACellThatLooksDifferentCutIsNotCut) {
   EXPECT_EQ(shareAxes(h, 0.002), 0);
 }
 
+TEST(PricedBlocks, RandomGridsShowTheSame) {
+  for (std::uint32_t seed = 1; seed <= 4; ++seed) {
+    const Block g0 = randomBlock({12, 8, 10}, {0.3, 0.05, 1.2}, seed, 0.5);
+    BlockOptions options;
+    options.priced = true;
+    BlockStats stats;
+    auto h = buildHierarchy(g0, {Material{}, Material{200, 200, 200}, Material{40, 60, 90}, Material{200, 30, 30}, Material{10, 90, 10}},
+                            glm::dvec3(0.0), options, stats);
+    ASSERT_TRUE(h.ok()) << h.error().message;
+    expectSameContent(g0, *h, 5000, 40 + seed);
+  }
+}
+
+// A 20 m wall whose front 0.3 m holds forty 2 cm mullions: in one block every layer of the wall
+// needs their 80 boundaries along x, and the x item ~250 pixels. Priced, the search cuts the strip
+// off (the thick wall behind it keeps two cells along x), which the estimate says is smaller.
+TEST(PricedBlocks, AStripOfNarrowCellsIsCutOff) {
+  std::vector<double> xs{0.0};
+  for (int i = 0; i < 40; ++i) {
+    xs.push_back(0.5 * i + 0.24);
+    xs.push_back(0.5 * i + 0.26);
+  }
+  xs.push_back(20.0);
+  const Block g0 = blockFromBounds(std::array<std::vector<double>, 3>{xs, {0.0, 3.0}, {0.0, 4.0, 4.3}}, [](const glm::dvec3& c) {
+    if (c.z < 4.0) return Cell::box(1);
+    const double inBay = c.x - 0.5 * std::floor(c.x / 0.5);
+    return inBay > 0.24 && inBay < 0.26 ? Cell::box(2) : Cell::empty();
+  });
+  const std::vector<Material> materials{Material{}, Material{200, 200, 200}, Material{40, 60, 90}};
+  const auto totalEstimate = [](const Hierarchy& h) {
+    double sum = 0;
+    for (const Block& b : h.blocks) sum += pngBytesEstimate(b);
+    return sum;
+  };
+  BlockOptions plain;
+  plain.minSavedCells = 1'000'000'000;  // nothing pays: one block
+  BlockStats stats;
+  auto one = buildHierarchy(g0, materials, glm::dvec3(0.0), plain, stats);
+  ASSERT_TRUE(one.ok());
+  EXPECT_EQ(one->blocks.size(), 1u);
+  BlockOptions priced;
+  priced.priced = true;
+  auto cut = buildHierarchy(g0, materials, glm::dvec3(0.0), priced, stats);
+  ASSERT_TRUE(cut.ok());
+  EXPECT_GT(cut->blocks.size(), 1u);
+  EXPECT_LT(totalEstimate(*cut), totalEstimate(*one));
+  // The mullions' boundaries stay with the strip: no block deeper than it holds them.
+  for (const Block& b : cut->blocks) EXPECT_FALSE(b.cellCount(0) >= 80 && b.sizeM().z > 0.31) << b.cellCount(0) << " " << b.sizeM().z;
+  expectSameContent(g0, *cut, 5000, 50);
+}
+
 }  // namespace
 }  // namespace nut::converter

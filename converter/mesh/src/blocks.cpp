@@ -28,10 +28,17 @@
 #include <glm/matrix.hpp>
 
 #include <nut/format.hpp>
+#include <nut/hni.hpp>
+#include <nut/metadata.hpp>
 #include <nut/solids.hpp>
 #include <nut/units.hpp>
 
 namespace nut::converter {
+
+namespace {
+// pngBytesEstimate's weights.
+constexpr double kHeaderBytes = 30, kBytesPerMetadataPixel = 1.1, kBytesPerCell = 0.05, kBytesPerRecord = 4;
+}  // namespace
 
 long long estimatedBytes(const Block& b) {
   long long bytes = 4LL * format::kHeaderPixels;
@@ -57,6 +64,24 @@ Block subBlock(const Block& b, const std::array<int, 3>& lo, const std::array<in
   return out;
 }
 
+double pngBytesEstimate(const Block& b) {
+  double bytes = kHeaderBytes;
+  for (int a = 0; a < 3; ++a) {
+    std::vector<std::int64_t> units;
+    for (double m : b.boundsM[static_cast<std::size_t>(a)]) units.push_back(toUnits(m));
+    const auto index = buildAxisIndexWithin(units, CompileOptions{}.heuristicToleranceM);
+    // An axis no index fits is split into blocks of full items.
+    bytes += kBytesPerMetadataPixel * (index ? index->pixels() : 2 * format::kMaxMetadataPixels);
+  }
+  std::vector<bool> used(b.redirections.size(), false);
+  for (const Cell& c : b.cells)
+    if (c.kind == CellKind::Redirection && !used[c.redirection]) {
+      used[c.redirection] = true;
+      bytes += kBytesPerRecord;
+    }
+  return bytes + kBytesPerCell * static_cast<double>(b.cells.size());
+}
+
 namespace {
 
 // Deeper than this the ray casters' 32-level stack would run out (docs/RENDERING.md).
@@ -66,6 +91,10 @@ constexpr int kMaxPeriod = 64;
 // findRecordCut: blocks larger than this are not tried (every cut is built), and a block costs
 // about as much as this many redirection records (a header and metadata against 4 pixels).
 constexpr std::size_t kMaxRecordCutCells = 20000;
+// BlockOptions::priced: larger blocks are cut by cells first (every cut is built); a parent
+// stacking two or three parts costs about this many PNG bytes.
+constexpr std::size_t kMaxPricedCells = 50000;
+constexpr double kStackBytes = 45;
 constexpr long long kRecordsPerBlock = 40;
 // A surface within this (in a cell's unit cube) of a part's corner only touches the part.
 constexpr double kCoverageEpsilon = 1e-6;
@@ -435,6 +464,7 @@ class Decomposer {
     if (depth >= kMaxDepth || (b.cells.size() <= static_cast<std::size_t>(options_.minSavedCells) && !showsPieces(b)))
       return leaf(std::move(b));
 
+    if (options_.priced && b.cells.size() <= kMaxPricedCells) return decomposePriced(std::move(b), depth);
     std::optional<Run> run;
     const LayerSummary summary = summarizeLayers(b);
     for (int a = 0; a < 3; ++a)
@@ -447,6 +477,50 @@ class Decomposer {
   }
 
  private:
+  // b as a leaf would be stored: simplified, cells beside round pieces plain.
+  Block leafForm(Block b) const {
+    simplify(b);
+    if (showPlainCells(h_, b, pieces_)) simplify(b);
+    return b;
+  }
+  double leafBytes(const Block& b) const { return pngBytesEstimate(leafForm(b)); }
+
+  // BlockOptions::priced: the cut in two or the repeat whose blocks (each as a leaf, and the
+  // parent that stacks them) are estimated smallest, when smaller than b as a leaf.
+  Part decomposePriced(Block b, int depth) {
+    double best = leafBytes(b);
+    std::optional<Cut> bestCut;
+    std::optional<Run> bestRun;
+    const std::array<int, 3> n{b.cellCount(0), b.cellCount(1), b.cellCount(2)};
+    const auto part = [&](int a, int from, int to) {
+      std::array<int, 3> lo{0, 0, 0}, hi = n;
+      lo[static_cast<std::size_t>(a)] = from;
+      hi[static_cast<std::size_t>(a)] = to;
+      return leafBytes(subBlock(b, lo, hi));
+    };
+    for (int a = 0; a < 3; ++a)
+      for (int at = 1; at < n[static_cast<std::size_t>(a)]; ++at)
+        if (const double bytes = kStackBytes + part(a, 0, at) + part(a, at, n[static_cast<std::size_t>(a)]); bytes < best) {
+          best = bytes;
+          bestCut = Cut{a, at, 0};
+        }
+    const LayerSummary summary = summarizeLayers(b);
+    for (int a = 0; a < 3; ++a)
+      if (auto r = findRun(b, summary, a, options_.toleranceM)) {
+        const int end = r->start + r->period * r->count;
+        double bytes = kStackBytes + part(a, r->start, r->start + r->period);
+        if (r->start > 0) bytes += part(a, 0, r->start);
+        if (end < n[static_cast<std::size_t>(a)]) bytes += part(a, end, n[static_cast<std::size_t>(a)]);
+        if (bytes < best) {
+          best = bytes;
+          bestRun = r;
+        }
+      }
+    if (bestRun) return repeat(b, *bestRun, depth);
+    if (bestCut) return split(b, *bestCut, depth);
+    return leaf(std::move(b));
+  }
+
   // Whether cells of b redirect to the solid grid's sub-blocks of round pieces.
   bool showsPieces(const Block& b) const {
     return pieces_ > 0 && std::any_of(b.cells.begin(), b.cells.end(), [&](const Cell& c) {

@@ -37,7 +37,16 @@ struct BlockOptions {
   // repetitive grid deflates to a few hundredths of a byte, so the best threshold depends on the
   // building: the converter builds several and keeps the smallest PNG.
   long long minSavedCells = 32;
+  // Choose in blocks of up to kMaxPricedCells cells whether to cut and where (every cut tried, and
+  // the best repeat) by the estimated PNG bytes of the blocks that result: metadata pixels at the
+  // format's rule, cells, records and headers (pngBytesEstimate). Larger blocks are cut as above.
+  bool priced = false;
 };
+
+// A block's bytes in a PNG, estimated from `nut info --bytes` on the samples: about 30 for its
+// header, 1.1 per metadata pixel (both rows, M at compile()'s rule), 0.05 per cell and 4 per
+// redirection record its cells use.
+double pngBytesEstimate(const Block& b);
 
 struct ExtractedBlock {
   BlockId block = 0;
