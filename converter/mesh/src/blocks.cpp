@@ -91,11 +91,11 @@ constexpr int kMaxPeriod = 64;
 // findRecordCut: blocks larger than this are not tried (every cut is built), and a block costs
 // about as much as this many redirection records (a header and metadata against 4 pixels).
 constexpr std::size_t kMaxRecordCutCells = 20000;
+constexpr long long kRecordsPerBlock = 40;
 // BlockOptions::priced: larger blocks are cut by cells first (every cut is built); a parent
 // stacking two or three parts costs about this many PNG bytes.
 constexpr std::size_t kMaxPricedCells = 50000;
 constexpr double kStackBytes = 45;
-constexpr long long kRecordsPerBlock = 40;
 // A surface within this (in a cell's unit cube) of a part's corner only touches the part.
 constexpr double kCoverageEpsilon = 1e-6;
 
@@ -530,13 +530,12 @@ class Decomposer {
 
   // What b costs as a leaf: cells, and distinct records its cells reference.
   std::pair<long long, long long> leafCost(Block b) const {
-    simplify(b);
-    if (showPlainCells(h_, b, pieces_)) simplify(b);
-    std::vector<bool> used(b.redirections.size(), false);
+    const Block leaf = leafForm(std::move(b));
+    std::vector<bool> used(leaf.redirections.size(), false);
     long long records = 0;
-    for (const Cell& c : b.cells)
+    for (const Cell& c : leaf.cells)
       if (c.kind == CellKind::Redirection && !used[c.redirection]) used[c.redirection] = true, ++records;
-    return {static_cast<long long>(b.cells.size()), records};
+    return {static_cast<long long>(leaf.cells.size()), records};
   }
 
   // The cut in two that saves most when a record counts as many cells as it costs bytes (a
