@@ -203,13 +203,15 @@ bool buildHni(const SolidGrid& grid, const ConvertOptions& options, Conversion& 
   BuiltVariant& b = built[*chosen];
   // Axes refined to shared boundaries (share_axes.hpp) pay on some buildings and cost on others
   // (the house 8 % smaller, the street 6-15 % larger: data components that were equal no longer
-  // are), so the refinement is tried on the kept variant and kept when its PNG is smaller. Quick
-  // PNGs decide (on the samples and external meshes they choose as the smaller ones do, at a
-  // fraction of the time).
+  // are), so the refinement is tried on the kept variant and kept when its PNG is smaller: at the
+  // effort the variants were compared at on small grids (a quick PNG misjudged the house by 2 %),
+  // quick on large ones (the high-rise's small PNG takes 44 ms, 6 % of its conversion).
+  const PngEffort effort = grid.block.cells.size() <= kMaxPricedGridCells ? PngEffort::Small : PngEffort::Quick;
+  const auto pngBytes = [&](const Image& image) { return encodePng(image, nullptr, effort).size(); };
   Hierarchy shared = *b.hierarchy;
   if (const int refined = shareAxes(shared, options.compile.heuristicToleranceM); refined > 0)
     if (auto image = compile(shared, options.compile);
-        image && encodePng(*image, nullptr, PngEffort::Quick).size() < encodePng(*b.image, nullptr, PngEffort::Quick).size()) {
+        image && pngBytes(*image) < (effort == PngEffort::Small ? b.pngBytes : pngBytes(*b.image))) {
       *b.hierarchy = std::move(shared);
       b.image = std::move(image);
       report.sharedAxes = refined;
