@@ -1,6 +1,7 @@
 // Block extraction and simplification (converter/blocks.hpp), top-down: a block is simplified
-// (identical neighbouring layers of boxes and empty cells merge, which removes the boundaries only
-// other parts needed), then cut along one axis where that pays most:
+// (identical neighbouring layers of boxes and empty cells, or of cells placing one block at one
+// place, merge, which removes the boundaries only other parts needed), then cut along one axis
+// where that pays most:
 //
 //   repeat  a run of layers whose width pattern (within the tolerance) and content repeat with
 //           period p, r times, becomes one cell that redirects to a block of one period, tiled
@@ -13,15 +14,17 @@
 // The parts are decomposed the same way, recursively, so a floor repeated up a tower is found
 // first and the window bay repeated along the floor inside it. The cost model counts cells (4
 // bytes each in a data component); a cut is taken when it saves at least BlockOptions::
-// minSavedCells cells.
+// minSavedCells cells, where a redirection record to a round piece counts as a share of a block
+// (findRecordCut). BlockOptions::priced prices every cut in estimated PNG bytes instead. Boxes a
+// person selected (--block) are extracted first (manual_blocks.cpp).
 #include <converter/blocks.hpp>
 
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
-#include <map>
 #include <optional>
-#include <string>
+#include <utility>
+#include <vector>
 
 #include <glm/common.hpp>
 #include <glm/mat3x3.hpp>
@@ -32,6 +35,8 @@
 #include <nut/metadata.hpp>
 #include <nut/solids.hpp>
 #include <nut/units.hpp>
+
+#include "manual_blocks.hpp"
 
 namespace nut::converter {
 
@@ -123,11 +128,6 @@ Strides stridesOf(const Block& block, int a) {
                                         static_cast<std::size_t>(block.cellCount(0)) * static_cast<std::size_t>(block.cellCount(1))};
   return {step[static_cast<std::size_t>(a)], step[static_cast<std::size_t>((a + 1) % 3)], step[static_cast<std::size_t>((a + 2) % 3)],
           block.cellCount((a + 1) % 3), block.cellCount((a + 2) % 3)};
-}
-
-// A box or an empty cell looks the same however it is stretched; other solids do not.
-bool stretchable(const Cell& c) {
-  return c.kind == CellKind::Empty || (c.kind == CellKind::Solid && c.solid.index == 0);
 }
 
 // Whether `upper`, the neighbour of `lower` along axis a (lower being widthM wide along a), goes
@@ -668,188 +668,6 @@ class Decomposer {
   const BlockOptions& options_;
   BlockStats& stats_;
 };
-
-// The cells of g0 that a world box covers (snapped outwards to whole cells), or nullopt when it
-// misses g0.
-std::optional<std::pair<std::array<int, 3>, std::array<int, 3>>> cellRange(const Block& g0, const WorldBox& box,
-                                                                          const glm::dvec3& originM) {
-  std::array<int, 3> lo{}, hi{};
-  for (int a = 0; a < 3; ++a) {
-    const auto& bounds = g0.boundsM[static_cast<std::size_t>(a)];
-    const double l = box.min[a] - originM[a], u = box.max[a] - originM[a];
-    if (u <= 0 || l >= bounds.back()) return std::nullopt;
-    lo[static_cast<std::size_t>(a)] = std::max(0, static_cast<int>(std::upper_bound(bounds.begin(), bounds.end(), l) - bounds.begin()) - 1);
-    hi[static_cast<std::size_t>(a)] = std::min(g0.cellCount(a), static_cast<int>(std::lower_bound(bounds.begin(), bounds.end(), u) - bounds.begin()));
-    if (hi[static_cast<std::size_t>(a)] <= lo[static_cast<std::size_t>(a)]) return std::nullopt;
-  }
-  return std::make_pair(lo, hi);
-}
-
-// One axis of a manual block's pattern, as pieces to match g0's cells against: a piece is a cell
-// of the simplified block S, or (the second way to match, see axisMatches) a cell of the box as
-// selected, which is part of an S cell.
-struct Piece {
-  double widthM = 0.0;
-  int sCell = 0;               // the S cell it belongs to
-  std::int64_t posUnits = 0;   // its minimum corner inside S
-  bool wholeCell = true;       // it is the whole S cell
-};
-
-// How the g0 cells from some start along one axis map onto S: g0 cell start + k shows S cell
-// sCell[k] from position posUnits[k] inside S; whole[k] when it alone stands for a whole S cell.
-struct AxisMap {
-  std::vector<int> sCell;
-  std::vector<std::int64_t> posUnits;
-  std::vector<bool> whole;
-  friend bool operator==(const AxisMap&, const AxisMap&) = default;
-};
-
-// The paper's one-to-many width matching along axis a of g0 from cell `start`: each piece takes
-// successive g0 cells whose widths sum to the piece's width within the tolerance. Greedy: a piece
-// takes cells until their sum reaches its width minus the tolerance and is rejected when that sum
-// exceeds its width plus the tolerance (the shortest group that fits; no backtracking). A g0 cell
-// inside a group shows S from the group's start in S plus the g0 widths before it in the group.
-std::optional<AxisMap> groupAxis(const Block& g0, int a, int start, const std::vector<Piece>& pieces, double slack) {
-  const auto& bounds = g0.boundsM[static_cast<std::size_t>(a)];
-  const int n = g0.cellCount(a);
-  AxisMap map;
-  int j = start;
-  for (const Piece& piece : pieces) {
-    if (j >= n) return std::nullopt;
-    const int first = j;
-    const double from = bounds[static_cast<std::size_t>(first)];
-    double sum = 0.0;
-    do {
-      ++j;
-      sum = bounds[static_cast<std::size_t>(j)] - from;
-    } while (j < n && sum < piece.widthM - slack);
-    if (std::abs(sum - piece.widthM) > slack) return std::nullopt;
-    for (int k = first; k < j; ++k) {
-      map.sCell.push_back(piece.sCell);
-      map.posUnits.push_back(piece.posUnits + toUnits(bounds[static_cast<std::size_t>(k)] - from));
-      map.whole.push_back(piece.wholeCell && j - first == 1);
-    }
-  }
-  return map;
-}
-
-// The ways g0's cells from `start` along axis a can match S, best first: grouped against the cells
-// of S, then against the cells of the box as selected. The second keeps every place that matches
-// the selection cell for cell (the matching before S was simplified), which grouping against S
-// can miss: the tolerance is per group, so small differences in several merged cells add up, and
-// the greedy grouping can end a group early when a g0 cell is narrower than twice the tolerance.
-std::vector<AxisMap> axisMatches(const Block& g0, int a, int start, const std::array<std::vector<Piece>, 2>& pieces, double slack) {
-  std::vector<AxisMap> out;
-  for (const auto& p : pieces)
-    if (auto m = groupAxis(g0, a, start, p, slack); m && std::find(out.begin(), out.end(), *m) == out.end()) out.push_back(std::move(*m));
-  return out;
-}
-
-// The paper's user-selected block: the cells the box covers, simplified (neighbour layers holding
-// the same boxes and empty cells merge, so boundaries that only other parts of g0 needed go), become
-// block S. Every place of g0 whose cells can be grouped along each axis to match S's widths (within
-// the tolerance; groupAxis) and whose cells all equal the S cell they fall in redirects to S, each
-// cell with the offset of its own corner inside S; a cell that is part of a group shows only its
-// part of the S cell, so only boxes and empty S cells (which look the same however they are cut)
-// may be grouped. One record per distinct offset: places that match cell for cell share records,
-// so later repeats of the places are identical and the automatic search can tile them.
-void extractManual(Hierarchy& h, Block& g0, const WorldBox& box, const glm::dvec3& originM, double tolerance,
-                   BlockStats& stats) {
-  const auto range = cellRange(g0, box, originM);
-  if (!range) return;
-  const auto [lo, hi] = *range;
-  const Block selected = subBlock(g0, lo, hi);
-  Block pattern = selected;
-  simplify(pattern);
-  // 1e-9 m absorbs rounding of differences of boundaries, so a tolerance of 0 matches equal widths.
-  const double slack = tolerance + 1e-9;
-
-  // Per axis: the pieces of S and of the selection (whose boundaries include S's, the same values).
-  std::array<std::array<std::vector<Piece>, 2>, 3> pieces;
-  for (int a = 0; a < 3; ++a) {
-    const auto& sb = pattern.boundsM[static_cast<std::size_t>(a)];
-    const auto& ub = selected.boundsM[static_cast<std::size_t>(a)];
-    for (int i = 0; i < pattern.cellCount(a); ++i)
-      pieces[static_cast<std::size_t>(a)][0].push_back(
-          Piece{sb[static_cast<std::size_t>(i + 1)] - sb[static_cast<std::size_t>(i)], i, toUnits(sb[static_cast<std::size_t>(i)]), true});
-    for (int k = 0; k < selected.cellCount(a); ++k) {
-      const int i = static_cast<int>(std::upper_bound(sb.begin(), sb.end(), ub[static_cast<std::size_t>(k)]) - sb.begin()) - 1;
-      const bool whole = toUnits(ub[static_cast<std::size_t>(k)]) == toUnits(sb[static_cast<std::size_t>(i)]) &&
-                         toUnits(ub[static_cast<std::size_t>(k + 1)]) == toUnits(sb[static_cast<std::size_t>(i + 1)]);
-      pieces[static_cast<std::size_t>(a)][1].push_back(
-          Piece{ub[static_cast<std::size_t>(k + 1)] - ub[static_cast<std::size_t>(k)], i, toUnits(ub[static_cast<std::size_t>(k)]), whole});
-    }
-  }
-  std::array<std::vector<std::vector<AxisMap>>, 3> matches;  // per axis and start
-  for (int a = 0; a < 3; ++a)
-    for (int s = 0; s < g0.cellCount(a); ++s)
-      matches[static_cast<std::size_t>(a)].push_back(axisMatches(g0, a, s, pieces[static_cast<std::size_t>(a)], slack));
-
-  struct Place {
-    std::array<int, 3> at;
-    std::array<const AxisMap*, 3> map;
-  };
-  std::vector<Place> places;
-  std::vector<bool> claimed(g0.cells.size(), false);  // cells of places found, which others may not overlap
-  const auto fits = [&](const std::array<int, 3>& at, const std::array<const AxisMap*, 3>& m) {
-    const std::array<int, 3> n{static_cast<int>(m[0]->sCell.size()), static_cast<int>(m[1]->sCell.size()), static_cast<int>(m[2]->sCell.size())};
-    for (int z = 0; z < n[2]; ++z)
-      for (int y = 0; y < n[1]; ++y)
-        for (int x = 0; x < n[0]; ++x) {
-          const std::size_t index = g0.cellIndex(at[0] + x, at[1] + y, at[2] + z);
-          if (claimed[index]) return false;
-          const auto sx = static_cast<std::size_t>(x), sy = static_cast<std::size_t>(y), sz = static_cast<std::size_t>(z);
-          const Cell& s = pattern.cell(m[0]->sCell[sx], m[1]->sCell[sy], m[2]->sCell[sz]);
-          if (!(g0.cells[index] == s)) return false;
-          if (!stretchable(s) && !(m[0]->whole[sx] && m[1]->whole[sy] && m[2]->whole[sz])) return false;
-        }
-    return true;
-  };
-  // The first combination of per-axis matches whose cells fit at `at`, if any.
-  const auto firstFit = [&](const std::array<int, 3>& at) -> std::optional<std::array<const AxisMap*, 3>> {
-    for (const AxisMap& cz : matches[2][static_cast<std::size_t>(at[2])])
-      for (const AxisMap& cy : matches[1][static_cast<std::size_t>(at[1])])
-        for (const AxisMap& cx : matches[0][static_cast<std::size_t>(at[0])])
-          if (const std::array<const AxisMap*, 3> m{&cx, &cy, &cz}; fits(at, m)) return m;
-    return std::nullopt;
-  };
-  for (int z = 0; z < g0.cellCount(2); ++z)
-    for (int y = 0; y < g0.cellCount(1); ++y)
-      for (int x = 0; x < g0.cellCount(0); ++x) {
-        if (claimed[g0.cellIndex(x, y, z)]) continue;
-        const std::array<int, 3> at{x, y, z};
-        const auto m = firstFit(at);
-        if (!m) continue;
-        places.push_back(Place{at, *m});
-        for (std::size_t k = 0; k < (*m)[2]->sCell.size(); ++k)
-          for (std::size_t j = 0; j < (*m)[1]->sCell.size(); ++j)
-            for (std::size_t i = 0; i < (*m)[0]->sCell.size(); ++i)
-              claimed[g0.cellIndex(x + static_cast<int>(i), y + static_cast<int>(j), z + static_cast<int>(k))] = true;
-      }
-
-  const BlockId target = h.addBlock(pattern);
-  std::map<std::array<std::int64_t, 3>, std::uint32_t> records;  // offset (units) -> record index
-  for (const Place& p : places) {
-    const auto& [mx, my, mz] = p.map;
-    for (std::size_t k = 0; k < mz->sCell.size(); ++k)
-      for (std::size_t j = 0; j < my->sCell.size(); ++j)
-        for (std::size_t i = 0; i < mx->sCell.size(); ++i) {
-          const std::array<std::int64_t, 3> pos{mx->posUnits[i], my->posUnits[j], mz->posUnits[k]};
-          auto [it, added] = records.try_emplace(pos, static_cast<std::uint32_t>(g0.redirections.size()));
-          if (added)
-            g0.redirections.push_back(
-                Redirection{target, -glm::dvec3(toMetres(pos[0]), toMetres(pos[1]), toMetres(pos[2])), Rotation{}, {false, false, false}});
-          g0.cell(p.at[0] + static_cast<int>(i), p.at[1] + static_cast<int>(j), p.at[2] + static_cast<int>(k)) = Cell::redirect(it->second);
-        }
-  }
-  ExtractedBlock found;
-  found.block = target;
-  found.cells = {pattern.cellCount(0), pattern.cellCount(1), pattern.cellCount(2)};
-  found.sizeM = pattern.sizeM();
-  found.instances = static_cast<int>(places.size());
-  found.manual = true;
-  stats.found.push_back(found);
-}
 
 long long totalBytes(const Hierarchy& h) {
   long long sum = 0;
