@@ -586,7 +586,7 @@ TEST(PricedBlocks, AStripOfNarrowCellsIsCutOff) {
   const std::vector<Material> materials{Material{}, Material{200, 200, 200}, Material{40, 60, 90}};
   const auto totalEstimate = [](const Hierarchy& h) {
     double sum = 0;
-    for (const Block& b : h.blocks) sum += pngBytesEstimate(b);
+    for (const Block& b : h.blocks) sum += pngBytesEstimate(b, CompileOptions{}.heuristicToleranceM);
     return sum;
   };
   BlockOptions plain;

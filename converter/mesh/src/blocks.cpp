@@ -31,7 +31,6 @@
 #include <glm/matrix.hpp>
 
 #include <nut/format.hpp>
-#include <nut/hni.hpp>
 #include <nut/metadata.hpp>
 #include <nut/solids.hpp>
 #include <nut/units.hpp>
@@ -69,12 +68,12 @@ Block subBlock(const Block& b, const std::array<int, 3>& lo, const std::array<in
   return out;
 }
 
-double pngBytesEstimate(const Block& b) {
+double pngBytesEstimate(const Block& b, double heuristicToleranceM) {
   double bytes = kHeaderBytes;
   for (int a = 0; a < 3; ++a) {
     std::vector<std::int64_t> units;
     for (double m : b.boundsM[static_cast<std::size_t>(a)]) units.push_back(toUnits(m));
-    const auto index = buildAxisIndexWithin(units, CompileOptions{}.heuristicToleranceM);
+    const auto index = buildAxisIndexWithin(units, heuristicToleranceM);
     // An axis no index fits is split into blocks of full items.
     bytes += kBytesPerMetadataPixel * (index ? index->pixels() : 2 * format::kMaxMetadataPixels);
   }
@@ -483,7 +482,7 @@ class Decomposer {
     if (showPlainCells(h_, b, pieces_)) simplify(b);
     return b;
   }
-  double leafBytes(const Block& b) const { return pngBytesEstimate(leafForm(b)); }
+  double leafBytes(const Block& b) const { return pngBytesEstimate(leafForm(b), options_.heuristicToleranceM); }
 
   // BlockOptions::priced: the cut in two or the repeat whose blocks (each as a leaf, and the
   // parent that stacks them) are estimated smallest, when smaller than b as a leaf.

@@ -118,6 +118,7 @@ bool buildHni(const SolidGrid& grid, const ConvertOptions& options, Conversion& 
   progress("hierarchy", 0);
   BlockOptions base = options.blocks;
   base.toleranceM = options.solid.toleranceM;
+  base.heuristicToleranceM = options.compile.heuristicToleranceM;
   const bool flatFeasible = grid.block.cells.size() <= kMaxFlatCells;
   // `priced`: with the priced variant too (see kMaxPricedGridCells).
   const auto variantsOf = [&](const TurnedBlock& g, bool priced) {

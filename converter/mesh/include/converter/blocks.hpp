@@ -20,6 +20,7 @@
 #include <nut/camera.hpp>
 #include <nut/error.hpp>
 #include <nut/hierarchy.hpp>
+#include <nut/hni.hpp>
 
 namespace nut::converter {
 
@@ -41,12 +42,14 @@ struct BlockOptions {
   // the best repeat) by the estimated PNG bytes of the blocks that result: metadata pixels at the
   // format's rule, cells, records and headers (pngBytesEstimate). Larger blocks are cut as above.
   bool priced = false;
+  // The compile option the priced search prices metadata items at (CompileOptions).
+  double heuristicToleranceM = CompileOptions{}.heuristicToleranceM;
 };
 
 // A block's bytes in a PNG, estimated from `nut info --bytes` on the samples: about 30 for its
-// header, 1.1 per metadata pixel (both rows, M at compile()'s rule), 0.05 per cell and 4 per
-// redirection record its cells use.
-double pngBytesEstimate(const Block& b);
+// header, 1.1 per metadata pixel (both rows, M at compile()'s rule with heuristicToleranceM), 0.05
+// per cell and 4 per redirection record its cells use.
+double pngBytesEstimate(const Block& b, double heuristicToleranceM);
 
 struct ExtractedBlock {
   BlockId block = 0;
