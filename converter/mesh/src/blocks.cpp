@@ -23,6 +23,7 @@
 #include <cmath>
 #include <cstdint>
 #include <optional>
+#include <unordered_map>
 #include <utility>
 #include <vector>
 
@@ -157,30 +158,61 @@ bool sameLayers(const Block& b, const Strides& st, int i, int j) {
   return true;
 }
 
-// Per axis, a hash of each layer's cells, in one pass over the cells in memory order (walking a
-// layer across the array is what costs: its cells are far apart for x layers). Every layer of an
-// axis is hashed in the same cell order, so equal layers hash equal.
-struct LayerSummary {
+// Per axis, the first layer equal to each layer (layers[a][i] == i for the first of its kind).
+// Walking a layer across the cell array is what costs (an x layer's cells are far apart), so the
+// layers are hashed in one pass over the cells in memory order, each layer's candidate is the
+// first layer of its hash, and every candidate is verified in a second such pass; only a layer
+// whose hash collided is compared layer by layer.
+using EqualLayers = std::array<std::vector<int>, 3>;
+EqualLayers equalLayers(const Block& b) {
   std::array<std::vector<std::uint64_t>, 3> hash;
-};
-LayerSummary summarizeLayers(const Block& b) {
-  LayerSummary s;
-  for (int a = 0; a < 3; ++a)
-    s.hash[static_cast<std::size_t>(a)].assign(static_cast<std::size_t>(b.cellCount(a)), 1469598103934665603ull);
-  std::size_t index = 0;
-  for (int z = 0; z < b.cellCount(2); ++z)
-    for (int y = 0; y < b.cellCount(1); ++y)
-      for (int x = 0; x < b.cellCount(0); ++x, ++index) {
-        const Cell& c = b.cells[index];
-        const std::uint64_t v = static_cast<std::uint64_t>(c.kind) | static_cast<std::uint64_t>(c.solid.index) << 8 |
-                                static_cast<std::uint64_t>(c.material) << 16 | static_cast<std::uint64_t>(c.redirection) << 32;
-        const std::array<int, 3> at{x, y, z};
-        for (std::size_t a = 0; a < 3; ++a) {
-          auto& h = s.hash[a][static_cast<std::size_t>(at[a])];
-          h = (h ^ v) * 1099511628211ull;
+  for (int a = 0; a < 3; ++a) hash[static_cast<std::size_t>(a)].assign(static_cast<std::size_t>(b.cellCount(a)), 1469598103934665603ull);
+  const std::array<int, 3> n{b.cellCount(0), b.cellCount(1), b.cellCount(2)};
+  const auto forEachCell = [&](auto&& visit) {
+    std::size_t index = 0;
+    for (int z = 0; z < n[2]; ++z)
+      for (int y = 0; y < n[1]; ++y)
+        for (int x = 0; x < n[0]; ++x, ++index) visit(index, std::array<int, 3>{x, y, z});
+  };
+  forEachCell([&](std::size_t index, const std::array<int, 3>& at) {
+    const Cell& c = b.cells[index];
+    const std::uint64_t v = static_cast<std::uint64_t>(c.kind) | static_cast<std::uint64_t>(c.solid.index) << 8 |
+                            static_cast<std::uint64_t>(c.material) << 16 | static_cast<std::uint64_t>(c.redirection) << 32;
+    for (std::size_t a = 0; a < 3; ++a) {
+      auto& h = hash[a][static_cast<std::size_t>(at[a])];
+      h = (h ^ v) * 1099511628211ull;
+    }
+  });
+  EqualLayers layers;
+  std::array<std::vector<bool>, 3> verified;
+  for (std::size_t a = 0; a < 3; ++a) {
+    std::unordered_map<std::uint64_t, int> first;
+    layers[a].resize(static_cast<std::size_t>(n[a]));
+    for (int i = 0; i < n[a]; ++i) layers[a][static_cast<std::size_t>(i)] = first.try_emplace(hash[a][static_cast<std::size_t>(i)], i).first->second;
+    verified[a].assign(static_cast<std::size_t>(n[a]), true);
+  }
+  const std::array<std::size_t, 3> stride{1, static_cast<std::size_t>(n[0]), static_cast<std::size_t>(n[0]) * static_cast<std::size_t>(n[1])};
+  forEachCell([&](std::size_t index, const std::array<int, 3>& at) {
+    for (std::size_t a = 0; a < 3; ++a) {
+      const auto i = static_cast<std::size_t>(at[a]);
+      const auto candidate = static_cast<std::size_t>(layers[a][i]);
+      if (candidate != i && verified[a][i] && !(b.cells[index] == b.cells[index - (i - candidate) * stride[a]])) verified[a][i] = false;
+    }
+  });
+  for (int a = 0; a < 3; ++a) {
+    auto& cls = layers[static_cast<std::size_t>(a)];
+    const Strides st = stridesOf(b, a);
+    for (int i = 0; i < n[static_cast<std::size_t>(a)]; ++i) {
+      if (verified[static_cast<std::size_t>(a)][static_cast<std::size_t>(i)]) continue;
+      cls[static_cast<std::size_t>(i)] = i;
+      for (int j = 0; j < i; ++j)
+        if (cls[static_cast<std::size_t>(j)] == j && sameLayers(b, st, i, j)) {
+          cls[static_cast<std::size_t>(i)] = j;
+          break;
         }
-      }
-  return s;
+    }
+  }
+  return layers;
 }
 
 // Whether every cell of layer i + 1 along axis a continues its neighbour in layer i.
@@ -254,23 +286,12 @@ struct Run {
 // The repeat along axis a that removes the most cells: layers [start, start + period * count)
 // where layer i and layer i + period hold the same cells and have widths within the tolerance,
 // and the whole run is count periods long within the tolerance.
-std::optional<Run> findRun(const Block& b, const LayerSummary& summary, int a, double tolerance) {
+std::optional<Run> findRun(const Block& b, const EqualLayers& equal, int a, double tolerance) {
   const int n = b.cellCount(a);
   const long long slice = static_cast<long long>(b.cellCount((a + 1) % 3)) * b.cellCount((a + 2) % 3);
   const auto& bounds = b.boundsM[static_cast<std::size_t>(a)];
   const auto width = [&](int i) { return bounds[static_cast<std::size_t>(i + 1)] - bounds[static_cast<std::size_t>(i)]; };
-  // Equal layers, found once: cls[i] is the first layer equal to layer i (hashes first).
-  const Strides st = stridesOf(b, a);
-  const std::vector<std::uint64_t>& hash = summary.hash[static_cast<std::size_t>(a)];
-  std::vector<int> cls(static_cast<std::size_t>(n));
-  for (int i = 0; i < n; ++i) {
-    cls[static_cast<std::size_t>(i)] = i;
-    for (int j = 0; j < i; ++j)
-      if (cls[static_cast<std::size_t>(j)] == j && hash[static_cast<std::size_t>(i)] == hash[static_cast<std::size_t>(j)] && sameLayers(b, st, i, j)) {
-        cls[static_cast<std::size_t>(i)] = j;
-        break;
-      }
-  }
+  const std::vector<int>& cls = equal[static_cast<std::size_t>(a)];
   std::optional<Run> best;
   for (int p = 1; p <= std::min(kMaxPeriod, n / 2); ++p) {
     int i = 0;
@@ -465,9 +486,9 @@ class Decomposer {
 
     if (options_.priced && b.cells.size() <= kMaxPricedCells) return decomposePriced(std::move(b), depth);
     std::optional<Run> run;
-    const LayerSummary summary = summarizeLayers(b);
+    const EqualLayers equal = equalLayers(b);
     for (int a = 0; a < 3; ++a)
-      if (auto r = findRun(b, summary, a, options_.toleranceM); r && (!run || r->savedCells > run->savedCells)) run = r;
+      if (auto r = findRun(b, equal, a, options_.toleranceM); r && (!run || r->savedCells > run->savedCells)) run = r;
     const std::optional<Cut> cut = bestCut(b);
     const long long runSaved = run ? run->savedCells : 0, cutSaved = cut ? cut->savedCells : 0;
     if (std::max(runSaved, cutSaved) < options_.minSavedCells) return leaf(std::move(b));
@@ -503,9 +524,9 @@ class Decomposer {
           best = bytes;
           bestCut = Cut{a, at, 0};
         }
-    const LayerSummary summary = summarizeLayers(b);
+    const EqualLayers equal = equalLayers(b);
     for (int a = 0; a < 3; ++a)
-      if (auto r = findRun(b, summary, a, options_.toleranceM)) {
+      if (auto r = findRun(b, equal, a, options_.toleranceM)) {
         const int end = r->start + r->period * r->count;
         double bytes = kStackBytes + part(a, r->start, r->start + r->period);
         if (r->start > 0) bytes += part(a, 0, r->start);

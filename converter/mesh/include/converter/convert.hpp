@@ -52,7 +52,9 @@ struct VariantReport {
   std::string name;            // "none", "repeats", "repeats+splits"
   int blocks = 0;
   long long bytesRaw = 0;      // the compiled image
-  long long bytesPng = 0;      // its PNG at PngEffort::Small (the file written uses Smallest)
+  long long bytesPngQuick = 0; // its PNG at PngEffort::Quick
+  long long bytesPng = 0;      // at PngEffort::Small (the file written uses Smallest); 0 when not
+                               // judged: its quick PNG was too far above the smallest
   double seconds = 0;          // building, compiling and encoding it
   std::string error;           // why it could not be compiled, if it could not
 };
