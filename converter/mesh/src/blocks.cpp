@@ -229,6 +229,16 @@ bool mergeableLayers(const Block& b, const Strides& st, int a, int i) {
   return true;
 }
 
+// Whether simplify() would leave b as it is.
+bool isSimplified(const Block& b) {
+  for (int a = 0; a < 3; ++a) {
+    const Strides st = stridesOf(b, a);
+    for (int i = 0; i + 1 < b.cellCount(a); ++i)
+      if (mergeableLayers(b, st, a, i)) return false;
+  }
+  return true;
+}
+
 }  // namespace
 
 void simplify(Block& b) {
@@ -480,18 +490,24 @@ class Decomposer {
   // What block b becomes in its parent's cell.
   Part decompose(Block b, int depth) {
     simplify(b);
+    return decomposeSimplified(b, depth);
+  }
+
+  // The same for a block that simplify() leaves as it is. b is only read (a leaf is copied), so
+  // the grid that every variant starts from is not copied per variant.
+  Part decomposeSimplified(const Block& b, int depth) {
     if (auto part = wholeBlockAsPart(b)) return *part;
     if (depth >= kMaxDepth || (b.cells.size() <= static_cast<std::size_t>(options_.minSavedCells) && !showsPieces(b)))
-      return leaf(std::move(b));
+      return leaf(b);
 
-    if (options_.priced && b.cells.size() <= kMaxPricedCells) return decomposePriced(std::move(b), depth);
+    if (options_.priced && b.cells.size() <= kMaxPricedCells) return decomposePriced(b, depth);
     std::optional<Run> run;
     const EqualLayers equal = equalLayers(b);
     for (int a = 0; a < 3; ++a)
       if (auto r = findRun(b, equal, a, options_.toleranceM); r && (!run || r->savedCells > run->savedCells)) run = r;
     const std::optional<Cut> cut = bestCut(b);
     const long long runSaved = run ? run->savedCells : 0, cutSaved = cut ? cut->savedCells : 0;
-    if (std::max(runSaved, cutSaved) < options_.minSavedCells) return leaf(std::move(b));
+    if (std::max(runSaved, cutSaved) < options_.minSavedCells) return leaf(b);
     if (runSaved >= cutSaved) return repeat(b, *run, depth);
     return split(b, *cut, depth);
   }
@@ -507,7 +523,7 @@ class Decomposer {
 
   // BlockOptions::priced: the cut in two or the repeat whose blocks (each as a leaf, and the
   // parent that stacks them) are estimated smallest, when smaller than b as a leaf.
-  Part decomposePriced(Block b, int depth) {
+  Part decomposePriced(const Block& b, int depth) {
     double best = leafBytes(b);
     std::optional<Cut> bestCut;
     std::optional<Run> bestRun;
@@ -538,7 +554,7 @@ class Decomposer {
       }
     if (bestRun) return repeat(b, *bestRun, depth);
     if (bestCut) return split(b, *bestCut, depth);
-    return leaf(std::move(b));
+    return leaf(b);
   }
 
   // Whether cells of b redirect to the solid grid's sub-blocks of round pieces.
@@ -703,24 +719,32 @@ long long totalCells(const Hierarchy& h) {
 
 }  // namespace
 
-Result<Hierarchy> buildHierarchy(Block g0, std::vector<Material> materials, const glm::dvec3& originM,
+Result<Hierarchy> buildHierarchy(const Block& grid, std::vector<Material> materials, const glm::dvec3& originM,
                                  const BlockOptions& options, BlockStats& stats, const std::vector<Block>& subBlocks) {
   Hierarchy h;
   h.materials = std::move(materials);
   // The solid grid's sub-blocks (quarter-round pieces) come first: sub-block i is block i, so
   // g0's redirection targets stand as they are in every part g0 is cut into.
   for (const Block& s : subBlocks) h.addBlock(s);
-  stats.cellsBefore = static_cast<long long>(g0.cells.size());
-  stats.bytesBefore = estimatedBytes(g0);
-  for (const WorldBox& box : options.manual) extractManual(h, g0, box, originM, options.toleranceM, stats);
+  stats.cellsBefore = static_cast<long long>(grid.cells.size());
+  stats.bytesBefore = estimatedBytes(grid);
   if (!options.automatic) {
+    Block g0 = grid;
+    for (const WorldBox& box : options.manual) extractManual(h, g0, box, originM, options.toleranceM, stats);
     showPlainCells(h, g0, static_cast<BlockId>(subBlocks.size()));
     simplify(g0);
     h.root = h.addBlock(std::move(g0));
   } else {
-    const glm::dvec3 size = g0.sizeM();
+    const glm::dvec3 size = grid.sizeM();
     Decomposer decomposer(h, static_cast<BlockId>(subBlocks.size()), options, stats);
-    const Part root = decomposer.decompose(std::move(g0), 0);
+    Part root;
+    if (!options.manual.empty()) {
+      Block g0 = grid;
+      for (const WorldBox& box : options.manual) extractManual(h, g0, box, originM, options.toleranceM, stats);
+      root = decomposer.decompose(std::move(g0), 0);
+    } else {
+      root = isSimplified(grid) ? decomposer.decomposeSimplified(grid, 0) : decomposer.decompose(grid, 0);
+    }
     if (root.target && root.placedAsItself()) {
       h.root = *root.target;
     } else {

@@ -79,11 +79,11 @@ Block subBlock(const Block& b, const std::array<int, 3>& lo, const std::array<in
 // Estimated bytes of a block in an HNI (the cost model above).
 long long estimatedBytes(const Block& b);
 
-// Builds the hierarchy: g0 becomes the root with its world origin originM, and blocks are
-// extracted from it as options say. Materials are passed through. g0's redirection cells point
+// Builds the hierarchy: the grid becomes the root with its world origin originM, and blocks are
+// extracted from it as options say. Materials are passed through. The grid's redirection cells point
 // into subBlocks (Redirection::target is an index there, SolidGrid::subBlocks), which are added
 // first so that those indices are their block ids.
-Result<Hierarchy> buildHierarchy(Block g0, std::vector<Material> materials, const glm::dvec3& originM,
+Result<Hierarchy> buildHierarchy(const Block& grid, std::vector<Material> materials, const glm::dvec3& originM,
                                  const BlockOptions& options, BlockStats& stats, const std::vector<Block>& subBlocks = {});
 
 }  // namespace nut::converter
