@@ -147,6 +147,17 @@ TEST(ConvertErrors, AFlatMeshEnclosesNothing) {
   EXPECT_NE(c.error().message.find("flat along y"), std::string::npos) << c.error().message;
 }
 
+// Spans past the format's 16.8 km per axis are named, also where metres stop fitting millimetres
+// in 64 bits (a huge span once read as "flat").
+TEST(ConvertErrors, AMeshLargerThanAnHniIsRefusedNamingTheAxis) {
+  for (const char* far : {"1e300", "100000"}) {
+    auto c = convertText("far", boxObj({0, 0, 0}, {1, 1, 1}) + "v 0 0 " + far + "\nf 1 2 9\n");
+    ASSERT_FALSE(c.ok()) << far;
+    EXPECT_NE(c.error().message.find("spans"), std::string::npos) << c.error().message;
+    EXPECT_NE(c.error().message.find("along z"), std::string::npos) << c.error().message;
+  }
+}
+
 TEST(MeshCheck, FindsOpenEdgesNonManifoldEdgesAndFlippedFaces) {
   auto obj = readObj(writeFile("checked.obj", boxObj({0, 0, 0}, {1, 1, 1}) +
                                                   // A fin on the edge x=0..1, y=0, z=0: that edge gets 3 faces.

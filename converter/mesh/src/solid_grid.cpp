@@ -2,6 +2,7 @@
 // plane clustering, the grid's boundaries, slope closure, and buildSolidGrid (converter/solid.hpp).
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <numbers>
 #include <numeric>
@@ -440,6 +441,15 @@ Result<SolidGrid> buildSolidGrid(const Mesh& mesh, const SolidOptions& options) 
   builder.size = box.max - box.min;
   builder.p.reserve(mesh.positions.size());
   for (const dvec3& q : mesh.positions) builder.p.push_back(q - builder.origin);
+  // An HNI block spans at most a u24 of millimetres (16.8 km) per axis.
+  const double maxSpanM = toMetres(format::kMaxLengthUnits);
+  for (int a = 0; a < 3; ++a)
+    if (!(builder.size[a] <= maxSpanM)) {
+      char span[64];
+      std::snprintf(span, sizeof span, "%.6g", builder.size[a]);
+      return Error{mesh.name + ": the mesh spans " + span + " m along " + std::string(1, "xyz"[a]) +
+                   ", more than an HNI holds (" + std::to_string(static_cast<int>(maxSpanM)) + " m)"};
+    }
   for (int a = 0; a < 3; ++a)
     if (snapToUnits(builder.size[a]) < 0.001)
       return Error{mesh.name + ": the mesh is flat along " + std::string(1, "xyz"[a]) +
