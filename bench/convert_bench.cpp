@@ -1,17 +1,24 @@
 // Mesh-to-NUT conversion speed: each sample OBJ, read once, converted whole (checks and repairs,
 // solid conversion, block extraction with every variant compiled, the chosen HNI compiled) per
 // iteration, on one thread and on all cores. Results read as triangles/s (items); the OBJ
-// parsing and the encoding of the HNI written are measured on their own. docs/CONVERTER.md records a run.
+// parsing and the encoding of the HNI written are measured on their own. `convertAtTolerance`
+// sweeps --tolerance: time against error, with the HNI's bytes (as written) and the fidelity of
+// the converter tests (the worst of four views, share of pixels within 8/255) as counters.
+// docs/CONVERTER.md records a run.
 #include <benchmark/benchmark.h>
 
 #include <cstdio>
 #include <cstdlib>
 #include <map>
+#include <optional>
 #include <string>
 
 #include <converter/convert.hpp>
 #include <converter/mesh.hpp>
+#include <converter/mesh_size.hpp>
 #include <nut/png_encode.hpp>
+
+#include "converter_fidelity.hpp"
 
 namespace {
 
@@ -56,6 +63,31 @@ void encodeHni(benchmark::State& state, const std::string& name) {
   state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(mesh.triangles.size()));
 }
 
+// state.range(0): --tolerance in millimetres; all cores.
+void convertAtTolerance(benchmark::State& state, const std::string& name) {
+  const nut::converter::Mesh& mesh = sample(name);
+  nut::converter::ConvertOptions options;
+  options.solid.toleranceM = static_cast<double>(state.range(0)) / 1000.0;
+  std::optional<nut::converter::Conversion> kept;
+  for (auto _ : state) {
+    auto result = nut::converter::convertMesh(mesh, options);
+    if (!result) {
+      state.SkipWithError(result.error().message.c_str());
+      return;
+    }
+    kept = std::move(*result);
+  }
+  state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(mesh.triangles.size()));
+  nut::HniText text;  // as `nut convert` writes the file
+  text.name = name;
+  text.generator = "nut convert";
+  text.originM = kept->originM;
+  const double png = static_cast<double>(nut::encodePng(kept->image, &text, nut::PngEffort::Smallest).size());
+  state.counters["hni_bytes"] = png;
+  state.counters["decoded_per_hni"] = static_cast<double>(nut::converter::measureMesh(mesh).decodedBytes) / png;
+  state.counters["within_8_pct"] = nut::converter::testing::measureFidelity(mesh, {&*kept}, "", 0.0).worstWithinPct;
+}
+
 void readObj(benchmark::State& state, const std::string& name) {
   for (auto _ : state) {
     auto obj = nut::converter::readObj(samplePath(name));
@@ -71,5 +103,10 @@ BENCHMARK_CAPTURE(convert, street, std::string("street"))->Arg(1)->Arg(0)->Unit(
 BENCHMARK_CAPTURE(convert, residential, std::string("residential"))->Arg(1)->Arg(0)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK_CAPTURE(convert, house, std::string("house"))->Arg(1)->Arg(0)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK_CAPTURE(convert, carpark, std::string("carpark"))->Arg(1)->Arg(0)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK_CAPTURE(convertAtTolerance, highrise, std::string("highrise"))->Arg(5)->Arg(10)->Arg(20)->Arg(50)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK_CAPTURE(convertAtTolerance, street, std::string("street"))->Arg(5)->Arg(10)->Arg(20)->Arg(50)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK_CAPTURE(convertAtTolerance, residential, std::string("residential"))->Arg(5)->Arg(10)->Arg(20)->Arg(50)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK_CAPTURE(convertAtTolerance, house, std::string("house"))->Arg(5)->Arg(10)->Arg(20)->Arg(50)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK_CAPTURE(convertAtTolerance, carpark, std::string("carpark"))->Arg(5)->Arg(10)->Arg(20)->Arg(50)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK_CAPTURE(encodeHni, highrise, std::string("highrise"))->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK_CAPTURE(readObj, highrise, std::string("highrise"))->Unit(benchmark::kMillisecond)->UseRealTime();
