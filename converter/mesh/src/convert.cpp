@@ -142,62 +142,60 @@ std::vector<BuiltVariant> buildVariants(const SolidGrid& grid, const std::vector
   return built;
 }
 
-// Builds hierarchy variants from the grid, compiles each and keeps in `out` the one whose PNG is
-// smallest. False when none fits an HNI (lastError says why).
-bool buildHni(const SolidGrid& grid, const ConvertOptions& options, Conversion& out, ConvertReport& report,
-              std::string& lastError, const std::function<void(std::string_view, double)>& progress) {
-  // Block extraction pays on repetitive buildings and costs headers and metadata on small ones,
-  // and PNG compression already shrinks repeated rows of a flat grid; so the variants are
-  // compiled and the smallest is kept (each is reported).
-  progress("hierarchy", 0);
-  BlockOptions base = options.blocks;
-  base.toleranceM = options.solid.toleranceM;
-  base.heuristicToleranceM = options.compile.heuristicToleranceM;
-  const bool flatFeasible = grid.block.cells.size() <= kMaxFlatCells;
-  // `priced`: with the priced variant too (see kMaxPricedGridCells).
-  const auto variantsOf = [&](const TurnedBlock& g, bool priced) {
-    const std::string turned = g.cube == 0 ? "" : ", axes turned by rotation " + std::to_string(g.cube);
-    std::vector<Variant> list;
-    if (!base.automatic || flatFeasible) {
-      list.push_back({"none" + turned, base, &g});
-      list.back().options.automatic = false;
-    }
-    if (!base.automatic) return list;
-    if (priced && grid.block.cells.size() <= kMaxPricedGridCells) {
-      // Every cut priced in estimated PNG bytes: slower, so for small grids, in one axis order.
-      list.push_back({"priced" + turned, base, &g});
-      list.back().options.priced = true;
-    }
-    // From many small blocks to a few large ones (see BlockOptions::minSavedCells).
-    for (long long minSaved : kMinSavedCellsTried) {
-      if (!flatFeasible && minSaved > kMaxMinSavedCellsLargeGrid) continue;
-      const std::string suffix = " (>= " + std::to_string(minSaved) + " cells" + turned + ")";
-      list.push_back({"repeats" + suffix, base, &g});
-      list.back().options.cuts = false;
-      list.back().options.minSavedCells = minSaved;
-      list.push_back({"repeats+splits" + suffix, base, &g});
-      list.back().options.minSavedCells = minSaved;
-    }
-    return list;
-  };
+// The variants of one axis order of the grid: no extraction (when the grid is small enough to be
+// a flat block), the priced search (`priced`, small grids), and repeats only or repeats and
+// splits at each threshold, from many small blocks to a few large ones (BlockOptions::minSavedCells).
+// Block extraction pays on repetitive buildings and costs headers and metadata on small ones,
+// and PNG compression already shrinks repeated rows of a flat grid; so every variant is compiled
+// and the smallest is kept (each is reported).
+std::vector<Variant> variantsOf(const TurnedBlock& g, const BlockOptions& base, std::size_t gridCells, bool priced) {
+  const bool flatFeasible = gridCells <= kMaxFlatCells;
+  const std::string turned = g.cube == 0 ? "" : ", axes turned by rotation " + std::to_string(g.cube);
+  std::vector<Variant> list;
+  if (!base.automatic || flatFeasible) {
+    list.push_back({"none" + turned, base, &g});
+    list.back().options.automatic = false;
+  }
+  if (!base.automatic) return list;
+  if (priced && gridCells <= kMaxPricedGridCells) {
+    list.push_back({"priced" + turned, base, &g});
+    list.back().options.priced = true;
+  }
+  for (long long minSaved : kMinSavedCellsTried) {
+    if (!flatFeasible && minSaved > kMaxMinSavedCellsLargeGrid) continue;
+    const std::string suffix = " (>= " + std::to_string(minSaved) + " cells" + turned + ")";
+    list.push_back({"repeats" + suffix, base, &g});
+    list.back().options.cuts = false;
+    list.back().options.minSavedCells = minSaved;
+    list.push_back({"repeats+splits" + suffix, base, &g});
+    list.back().options.minSavedCells = minSaved;
+  }
+  return list;
+}
 
-  // Every variant starts by merging equal neighbouring layers of the grid; done once here (manual
-  // blocks are world boxes snapped to the cells of the grid as it is, so not for them).
+// The grid as every variant starts from it, in every axis order (axis_order.hpp) when it is small
+// enough for a flat variant. Equal neighbouring layers are merged once here (not with manual
+// blocks: they are world boxes snapped to the cells of the grid as it is).
+std::vector<TurnedBlock> axisOrders(const SolidGrid& grid, const ConvertOptions& options) {
   const bool manual = !options.blocks.manual.empty();
   Block simplified = grid.block;
   if (!manual) simplify(simplified);
-  // The grid in every axis order (axis_order.hpp), when it is small enough for a flat variant.
   std::vector<TurnedBlock> orders{{std::move(simplified), 0, glm::dvec3(0.0)}};
-  if (!manual && flatFeasible && options.axisOrder)
+  if (!manual && grid.block.cells.size() <= kMaxFlatCells && options.axisOrder)
     for (int cube : axisOrderRotations())
       if (cube != 0) orders.push_back(turnBlock(orders[0].block, cube));
-  std::vector<Variant> variants;
-  std::vector<BuiltVariant> built;
+  return orders;
+}
+
+// Every variant that is tried, built and judged. With several axis orders, each is probed with
+// the last variant of its list (fewest, largest blocks), and the two whose probes are smallest get
+// every variant; the first of them also the priced one.
+void buildCandidates(const SolidGrid& grid, const std::vector<TurnedBlock>& orders, const BlockOptions& base,
+                     const ConvertOptions& options, std::vector<Variant>& variants, std::vector<BuiltVariant>& built) {
+  const std::size_t cells = grid.block.cells.size();
   std::vector<const TurnedBlock*> searched{&orders[0]};
   if (orders.size() > 1) {
-    // Every order is probed with the last variant of its list (fewest, largest blocks), and the
-    // two whose probes are smallest get every variant.
-    for (const TurnedBlock& g : orders) variants.push_back(variantsOf(g, false).back());
+    for (const TurnedBlock& g : orders) variants.push_back(variantsOf(g, base, cells, false).back());
     built = buildVariants(grid, variants, options);
     std::vector<std::size_t> rank(orders.size());
     for (std::size_t i = 0; i < rank.size(); ++i) rank[i] = i;
@@ -206,7 +204,7 @@ bool buildHni(const SolidGrid& grid, const ConvertOptions& options, Conversion& 
   }
   std::vector<Variant> more;
   for (const TurnedBlock* g : searched) {
-    std::vector<Variant> list = variantsOf(*g, g == searched.front());
+    std::vector<Variant> list = variantsOf(*g, base, cells, g == searched.front());
     if (orders.size() > 1) list.pop_back();  // the probe, built already
     more.insert(more.end(), list.begin(), list.end());
   }
@@ -214,13 +212,16 @@ bool buildHni(const SolidGrid& grid, const ConvertOptions& options, Conversion& 
   variants.insert(variants.end(), more.begin(), more.end());
   std::move(moreBuilt.begin(), moreBuilt.end(), std::back_inserter(built));
   judgeVariants(built, options.solid.threads);  // against the best of all, probes included
+}
 
-  // The smallest, in variant order on ties so the choice does not depend on timing.
+// Reports every variant and returns the smallest, in variant order on ties so that the choice does
+// not depend on timing; none when no variant compiled (lastError says why).
+std::optional<std::size_t> smallestVariant(const std::vector<Variant>& variants, const std::vector<BuiltVariant>& built,
+                                           ConvertReport& report, std::string& lastError) {
   std::optional<std::size_t> chosen;
   report.variants.clear();
-  report.sharedAxes = 0;
   for (std::size_t v = 0; v < variants.size(); ++v) {
-    BuiltVariant& b = built[v];
+    const BuiltVariant& b = built[v];
     VariantReport entry{variants[v].name, 0, 0, 0, 0, b.seconds, ""};
     if (b.image) {
       entry.blocks = static_cast<int>(b.hierarchy->blocks.size());
@@ -234,24 +235,44 @@ bool buildHni(const SolidGrid& grid, const ConvertOptions& options, Conversion& 
     }
     report.variants.push_back(entry);
   }
+  return chosen;
+}
+
+// Axes refined to shared boundaries (share_axes.hpp) pay on some buildings and cost on others
+// (the house 8 % smaller, the street 6-15 % larger: data components that were equal no longer
+// are), so the refinement is tried on the kept variant and kept when its PNG is smaller: at the
+// effort the variants were judged at on small grids (a quick PNG misjudged the house by 2 %),
+// quick on large ones (the high-rise's small PNG takes 44 ms, 6 % of its conversion). Returns the
+// number of axes refined and kept.
+int shareAxesIfSmaller(BuiltVariant& b, std::size_t gridCells, const CompileOptions& compileOptions) {
+  const PngEffort effort = gridCells <= kMaxPricedGridCells ? PngEffort::Small : PngEffort::Quick;
+  Hierarchy shared = *b.hierarchy;
+  const int refined = shareAxes(shared, compileOptions.heuristicToleranceM);
+  if (refined == 0) return 0;
+  auto image = compile(shared, compileOptions);
+  if (!image || encodePng(*image, nullptr, effort).size() >= (effort == PngEffort::Small ? b.pngBytes : b.quickBytes)) return 0;
+  *b.hierarchy = std::move(shared);
+  b.image = std::move(image);
+  return refined;
+}
+
+// Builds hierarchy variants from the grid, compiles each and keeps in `out` the one whose PNG is
+// smallest. False when none fits an HNI (lastError says why).
+bool buildHni(const SolidGrid& grid, const ConvertOptions& options, Conversion& out, ConvertReport& report,
+              std::string& lastError, const std::function<void(std::string_view, double)>& progress) {
+  progress("hierarchy", 0);
+  BlockOptions base = options.blocks;
+  base.toleranceM = options.solid.toleranceM;
+  base.heuristicToleranceM = options.compile.heuristicToleranceM;
+  const std::vector<TurnedBlock> orders = axisOrders(grid, options);
+  std::vector<Variant> variants;
+  std::vector<BuiltVariant> built;
+  buildCandidates(grid, orders, base, options, variants, built);
+  const std::optional<std::size_t> chosen = smallestVariant(variants, built, report, lastError);
   progress("hierarchy", 1);
   if (!chosen) return false;
   BuiltVariant& b = built[*chosen];
-  // Axes refined to shared boundaries (share_axes.hpp) pay on some buildings and cost on others
-  // (the house 8 % smaller, the street 6-15 % larger: data components that were equal no longer
-  // are), so the refinement is tried on the kept variant and kept when its PNG is smaller: at the
-  // effort the variants were compared at on small grids (a quick PNG misjudged the house by 2 %),
-  // quick on large ones (the high-rise's small PNG takes 44 ms, 6 % of its conversion).
-  const PngEffort effort = grid.block.cells.size() <= kMaxPricedGridCells ? PngEffort::Small : PngEffort::Quick;
-  const auto pngBytes = [&](const Image& image) { return encodePng(image, nullptr, effort).size(); };
-  Hierarchy shared = *b.hierarchy;
-  if (const int refined = shareAxes(shared, options.compile.heuristicToleranceM); refined > 0)
-    if (auto image = compile(shared, options.compile);
-        image && pngBytes(*image) < (effort == PngEffort::Small ? b.pngBytes : b.quickBytes)) {
-      *b.hierarchy = std::move(shared);
-      b.image = std::move(image);
-      report.sharedAxes = refined;
-    }
+  report.sharedAxes = shareAxesIfSmaller(b, grid.block.cells.size(), options.compile);
   out.hierarchy = std::move(*b.hierarchy);
   out.image = std::move(*b.image);
   report.blocks = std::move(b.stats);
