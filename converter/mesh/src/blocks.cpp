@@ -22,6 +22,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <unordered_map>
 #include <utility>
@@ -415,6 +416,23 @@ std::optional<Cut> findCut(const Block& b) {
   return best;
 }
 
+// What the search finds in a block before it cuts it: the repeat that removes the most cells,
+// and the cut in two that does (findCut; findRecordCut is the decomposer's, as it depends on the
+// options).
+struct Found {
+  std::optional<Run> run;
+  std::optional<Cut> cut;
+};
+
+Found findIn(const Block& b, double toleranceM, bool cuts) {
+  Found found;
+  const EqualLayers equal = equalLayers(b);
+  for (int a = 0; a < 3; ++a)
+    if (auto r = findRun(b, equal, a, toleranceM); r && (!found.run || r->savedCells > found.run->savedCells)) found.run = r;
+  if (cuts) found.cut = findCut(b);
+  return found;
+}
+
 // The plain cell (a box or empty) that redirection cell `at` of b shows, when it shows one: the
 // target's cells under it are all that box or empty, solids counting by what they fill of the
 // part the cell shows (a cell beside a round corner, on one side of its arc). Tiled or yawed
@@ -494,18 +512,17 @@ class Decomposer {
   }
 
   // The same for a block that simplify() leaves as it is. b is only read (a leaf is copied), so
-  // the grid that every variant starts from is not copied per variant.
-  Part decomposeSimplified(const Block& b, int depth) {
+  // the grid that every variant starts from is not copied per variant; `known` is what findIn
+  // found in b, when the caller has it.
+  Part decomposeSimplified(const Block& b, int depth, const Found* known = nullptr) {
     if (auto part = wholeBlockAsPart(b)) return *part;
     if (depth >= kMaxDepth || (b.cells.size() <= static_cast<std::size_t>(options_.minSavedCells) && !showsPieces(b)))
       return leaf(b);
 
     if (options_.priced && b.cells.size() <= kMaxPricedCells) return decomposePriced(b, depth);
-    std::optional<Run> run;
-    const EqualLayers equal = equalLayers(b);
-    for (int a = 0; a < 3; ++a)
-      if (auto r = findRun(b, equal, a, options_.toleranceM); r && (!run || r->savedCells > run->savedCells)) run = r;
-    const std::optional<Cut> cut = bestCut(b);
+    const Found found = known ? *known : findIn(b, options_.toleranceM, options_.cuts);
+    const std::optional<Run>& run = found.run;
+    const std::optional<Cut> cut = bestCut(b, found.cut);
     const long long runSaved = run ? run->savedCells : 0, cutSaved = cut ? cut->savedCells : 0;
     if (std::max(runSaved, cutSaved) < options_.minSavedCells) return leaf(b);
     if (runSaved >= cutSaved) return repeat(b, *run, depth);
@@ -598,9 +615,10 @@ class Decomposer {
     return best;
   }
 
-  std::optional<Cut> bestCut(const Block& b) const {
+  // The better of byCells (findCut's) and findRecordCut's.
+  std::optional<Cut> bestCut(const Block& b, const std::optional<Cut>& byCells) const {
     if (!options_.cuts) return std::nullopt;
-    const std::optional<Cut> byCells = findCut(b), byRecords = findRecordCut(b);
+    const std::optional<Cut> byRecords = findRecordCut(b);
     return byRecords && (!byCells || byRecords->savedCells > byCells->savedCells) ? byRecords : byCells;
   }
 
@@ -719,8 +737,21 @@ long long totalCells(const Hierarchy& h) {
 
 }  // namespace
 
+struct GridSearch {
+  bool simplified = false;  // otherwise found is empty: buildHierarchy searches the simplified grid
+  Found found;
+};
+
+std::shared_ptr<const GridSearch> searchGrid(const Block& grid, double toleranceM) {
+  auto search = std::make_shared<GridSearch>();
+  search->simplified = isSimplified(grid);
+  if (search->simplified) search->found = findIn(grid, toleranceM, true);
+  return search;
+}
+
 Result<Hierarchy> buildHierarchy(const Block& grid, std::vector<Material> materials, const glm::dvec3& originM,
-                                 const BlockOptions& options, BlockStats& stats, const std::vector<Block>& subBlocks) {
+                                 const BlockOptions& options, BlockStats& stats, const std::vector<Block>& subBlocks,
+                                 const GridSearch* search) {
   Hierarchy h;
   h.materials = std::move(materials);
   // The solid grid's sub-blocks (quarter-round pieces) come first: sub-block i is block i, so
@@ -742,6 +773,8 @@ Result<Hierarchy> buildHierarchy(const Block& grid, std::vector<Material> materi
       Block g0 = grid;
       for (const WorldBox& box : options.manual) extractManual(h, g0, box, originM, options.toleranceM, stats);
       root = decomposer.decompose(std::move(g0), 0);
+    } else if (search) {
+      root = search->simplified ? decomposer.decomposeSimplified(grid, 0, &search->found) : decomposer.decompose(grid, 0);
     } else {
       root = isSimplified(grid) ? decomposer.decomposeSimplified(grid, 0) : decomposer.decompose(grid, 0);
     }

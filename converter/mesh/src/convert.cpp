@@ -72,6 +72,7 @@ struct Variant {
   std::string name;
   BlockOptions options;
   const TurnedBlock* grid;
+  const GridSearch* search = nullptr;  // searchGrid(grid), when found for several variants
 };
 
 struct BuiltVariant {
@@ -96,7 +97,7 @@ bool smaller(const BuiltVariant& x, const BuiltVariant& y) {
 BuiltVariant buildVariant(const SolidGrid& grid, const Variant& v, const ConvertOptions& options) {
   const auto start = Clock::now();
   BuiltVariant b;
-  b.hierarchy = buildHierarchy(v.grid->block, grid.materials, grid.originM, v.options, b.stats, grid.subBlocks);
+  b.hierarchy = buildHierarchy(v.grid->block, grid.materials, grid.originM, v.options, b.stats, grid.subBlocks, v.search);
   if (!b.hierarchy) {
     b.image = b.hierarchy.error();
     return b;
@@ -202,10 +203,17 @@ void buildCandidates(const SolidGrid& grid, const std::vector<TurnedBlock>& orde
     std::stable_sort(rank.begin(), rank.end(), [&](std::size_t x, std::size_t y) { return smaller(built[x], built[y]); });
     searched = {&orders[rank[0]], &orders[rank[1]]};
   }
+  // The orders searched get every variant, which all start with the same look at the grid.
+  std::vector<std::shared_ptr<const GridSearch>> searches(searched.size());
+  if (base.automatic && base.manual.empty())
+    parallelFor(searched.size(), 1, options.solid.threads, [&](std::size_t begin, std::size_t end) {
+      for (std::size_t i = begin; i < end; ++i) searches[i] = searchGrid(searched[i]->block, base.toleranceM);
+    });
   std::vector<Variant> more;
-  for (const TurnedBlock* g : searched) {
-    std::vector<Variant> list = variantsOf(*g, base, cells, g == searched.front());
+  for (std::size_t i = 0; i < searched.size(); ++i) {
+    std::vector<Variant> list = variantsOf(*searched[i], base, cells, i == 0);
     if (orders.size() > 1) list.pop_back();  // the probe, built already
+    for (Variant& v : list) v.search = searches[i].get();
     more.insert(more.end(), list.begin(), list.end());
   }
   std::vector<BuiltVariant> moreBuilt = buildVariants(grid, more, options);

@@ -5,14 +5,17 @@
 // The paper needs a person to select each block S_i. Here the search is automatic: along each axis
 // of a block, runs of cells whose width pattern repeats (within the tolerance) and whose content
 // repeats cell for cell are candidates; touching repeats merge into one redirection that tiles
-// (wraps) the extracted block; a candidate is taken when the estimated bytes of the HNI go down
-// (cost model: 4 bytes per cell of a data component, 8 per metadata pixel, 48 per header, 16 per
-// redirection record). Simplification removes boundaries that only the extracted cells needed and
-// merges the cells they separated. The search repeats on the simplified grid and inside each
-// extracted block until nothing pays. `manual` boxes are extracted first, as the paper's user would.
+// (wraps) the extracted block; a block may also be cut in two where the halves need fewer
+// boundaries. A candidate is taken when it removes at least BlockOptions::minSavedCells cells (the
+// converter builds several thresholds and keeps the smallest PNG), or with `priced` when the
+// estimated PNG bytes of the parts go down. Simplification removes boundaries that only the
+// extracted cells needed and merges the cells they separated. The search repeats on the simplified
+// grid and inside each extracted block until nothing pays. `manual` boxes are extracted first, as
+// the paper's user would.
 #pragma once
 
 #include <array>
+#include <memory>
 #include <vector>
 
 #include <glm/vec3.hpp>
@@ -76,14 +79,25 @@ void simplify(Block& b);
 // redirections kept whole so that redirection cells keep their record indices.
 Block subBlock(const Block& b, const std::array<int, 3>& lo, const std::array<int, 3>& hi);
 
-// Estimated bytes of a block in an HNI (the cost model above).
+// Raw bytes of a block in an HNI, roughly (4 per cell of a data component, 8 per metadata pixel at
+// one pixel per cell, 48 per header, 16 per redirection record): the report's bytes before and
+// after extraction.
 long long estimatedBytes(const Block& b);
+
+// The automatic search's first look at a grid: the repeat and the cut in two that remove the most
+// cells. It is the same for every BlockOptions of one tolerance, so a caller building several
+// hierarchies from one grid (the converter's variants) finds it once and passes it to each
+// buildHierarchy; on the high-rise's 4.1 M cells it is most of a variant's search.
+struct GridSearch;
+std::shared_ptr<const GridSearch> searchGrid(const Block& grid, double toleranceM);
 
 // Builds the hierarchy: the grid becomes the root with its world origin originM, and blocks are
 // extracted from it as options say. Materials are passed through. The grid's redirection cells point
 // into subBlocks (Redirection::target is an index there, SolidGrid::subBlocks), which are added
-// first so that those indices are their block ids.
+// first so that those indices are their block ids. `search`, when given, is searchGrid(grid,
+// options.toleranceM).
 Result<Hierarchy> buildHierarchy(const Block& grid, std::vector<Material> materials, const glm::dvec3& originM,
-                                 const BlockOptions& options, BlockStats& stats, const std::vector<Block>& subBlocks = {});
+                                 const BlockOptions& options, BlockStats& stats, const std::vector<Block>& subBlocks = {},
+                                 const GridSearch* search = nullptr);
 
 }  // namespace nut::converter
