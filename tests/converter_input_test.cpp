@@ -19,6 +19,7 @@
 #include <converter/mesh_check.hpp>
 #include <converter/solid.hpp>
 #include <converter/winding.hpp>
+#include <nut/hni.hpp>
 
 #include "converter_support.hpp"
 
@@ -156,6 +157,51 @@ TEST(ConvertErrors, AMeshLargerThanAnHniIsRefusedNamingTheAxis) {
     EXPECT_NE(c.error().message.find("spans"), std::string::npos) << c.error().message;
     EXPECT_NE(c.error().message.find("along z"), std::string::npos) << c.error().message;
   }
+}
+
+// Messy soups on a small lattice (coincident and collinear corners, duplicate, flipped and
+// crossing faces, open and non-manifold edges, slopes of every ratio) either convert to an HNI
+// that validates and decodes, or fail with a message naming the mesh. 150 seeded soups.
+TEST(ConvertStress, RandomSoupsConvertToValidHnisOrFailNamingTheMesh) {
+  std::mt19937_64 rng(9);
+  int converted = 0;
+  ConvertOptions options;
+  options.solid.threads = 1;
+  for (int soup = 0; soup < 150; ++soup) {
+    std::string text;
+    char line[64];
+    const int vertices = 4 + static_cast<int>(rng() % 14);
+    const auto coordinate = [&] {
+      const std::uint64_t kind = rng() % 12;
+      const auto step = static_cast<double>(rng() % 9);
+      return kind < 9 ? std::fmod(step, 4.0) : kind == 9 ? 0.5 * std::fmod(step, 7.0) : kind == 10 ? 1e-4 * std::fmod(step, 3.0) : 0.3333 * step;
+    };
+    for (int v = 0; v < vertices; ++v) {
+      const double x = coordinate(), y = coordinate(), z = coordinate();
+      std::snprintf(line, sizeof line, "v %.4f %.4f %.4f\n", x, y, z);
+      text += line;
+    }
+    const int faces = 4 + static_cast<int>(rng() % 16);
+    for (int f = 0; f < faces; ++f) {
+      text += 'f';
+      for (int corner = 0, corners = 3 + static_cast<int>(rng() % 2); corner < corners; ++corner) {
+        std::snprintf(line, sizeof line, " %d", 1 + static_cast<int>(rng() % static_cast<std::uint64_t>(vertices)));
+        text += line;
+      }
+      text += '\n';
+    }
+    const std::string name = "soup" + std::to_string(soup);
+    auto c = convertText(name, text, options);
+    if (!c.ok()) {
+      EXPECT_NE(c.error().message.find(name), std::string::npos) << c.error().message;
+      continue;
+    }
+    ++converted;
+    const Status valid = validate(c->image);
+    ASSERT_TRUE(valid.ok()) << name << ": " << valid.error().message << "\n" << text;
+    EXPECT_TRUE(decode(c->image).ok()) << name;
+  }
+  EXPECT_GT(converted, 100);  // the soups mostly enclose something
 }
 
 TEST(MeshCheck, FindsOpenEdgesNonManifoldEdgesAndFlippedFaces) {
