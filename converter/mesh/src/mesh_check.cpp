@@ -211,7 +211,8 @@ MeshCheck checkAndRepair(Mesh& mesh) {
   // Pieces through manifold edges whose two faces now agree; each turned outwards.
   UnionFind pieces(w.triangles.size());
   std::vector<std::uint8_t> open(w.triangles.size(), 0);
-  uses = edgeUses(w);
+  // A face turned over runs each of its edges the other way; the edges and their order stay.
+  for (EdgeUse& use : uses) use.forward = use.forward != (flipped[use.face] != 0);
   forEachEdge(uses, [&](std::size_t i, std::size_t j) {
     if (j - i == 2 && uses[i].forward != uses[i + 1].forward) {
       pieces.unite(uses[i].face, uses[i + 1].face);
