@@ -17,20 +17,29 @@
 namespace nut::converter::solid {
 
 void clipAxis(Polygon2& poly, int axis, double bound, bool keepBelow) {
-  Polygon2 out;
+  // Called for every piece of every face: the sides are tested once per corner, and only the
+  // corners kept are copied (a Polygon2 holds 12).
+  std::array<bool, 12> in{};
   for (int i = 0; i < poly.n; ++i) {
-    const dvec2 a = poly.p[static_cast<std::size_t>(i)], b = poly.p[static_cast<std::size_t>((i + 1) % poly.n)];
-    const bool ina = keepBelow ? a[axis] <= bound : a[axis] >= bound;
-    const bool inb = keepBelow ? b[axis] <= bound : b[axis] >= bound;
-    if (ina) out.p[static_cast<std::size_t>(out.n++)] = a;
+    const double x = poly.p[static_cast<std::size_t>(i)][axis];
+    in[static_cast<std::size_t>(i)] = keepBelow ? x <= bound : x >= bound;
+  }
+  std::array<dvec2, 12> out;
+  int n = 0;
+  for (int i = 0; i < poly.n; ++i) {
+    const int next = i + 1 == poly.n ? 0 : i + 1;
+    const dvec2 a = poly.p[static_cast<std::size_t>(i)], b = poly.p[static_cast<std::size_t>(next)];
+    const bool ina = in[static_cast<std::size_t>(i)], inb = in[static_cast<std::size_t>(next)];
+    if (ina) out[static_cast<std::size_t>(n++)] = a;
     if (ina != inb) {
       const double t = (bound - a[axis]) / (b[axis] - a[axis]);
       dvec2 c = a + t * (b - a);
       c[axis] = bound;
-      out.p[static_cast<std::size_t>(out.n++)] = c;
+      out[static_cast<std::size_t>(n++)] = c;
     }
   }
-  poly = out;
+  std::copy_n(out.begin(), n, poly.p.begin());
+  poly.n = n;
 }
 double polygonArea(const Polygon2& poly) {
   double twice = 0;
