@@ -1,11 +1,13 @@
 #!/usr/bin/env bash
 # The demo: builds the sample hierarchies by hand through the API, compiles them to HNIs, reports
-# on each one and ray-casts it with the CPU reference ray caster.
+# on each one and ray-casts it with the CPU reference ray caster; then converts two of the sample
+# OBJ buildings and compares their renders with the source meshes' from the same camera.
 # Usage: scripts/demo.sh BUILD_DIR OUT_DIR
 set -euo pipefail
 build=${1:-build}
 out=${2:-out}
-mkdir -p "$out/hni" "$out/render"
+root=$(cd "$(dirname "$0")/.." && pwd)
+mkdir -p "$out/hni" "$out/render" "$out/convert"
 "$build/samples/make_samples" "$out/hni"
 for hni in "$out"/hni/*.png; do
   name=$(basename "$hni" .png)
@@ -14,5 +16,14 @@ for hni in "$out"/hni/*.png; do
   "$build/cli/nut" info "$hni"
   "$build/cli/nut" render "$hni" -o "$out/render/$name.png" --stats "$out/render/$name.json"
 done
+for name in house highrise; do
+  obj="$root/samples/obj/$name.obj"
+  "$build/cli/nut" convert "$obj" -o "$out/convert/$name.png" --report "$out/convert/$name.json"
+  "$build/cli/nut" render "$out/convert/$name.png" -o "$out/convert/$name-nut.png"
+  "$build/cli/nut" render-mesh "$obj" -o "$out/convert/$name-mesh.png"
+  "$build/cli/nut" compare "$out/convert/$name-nut.png" "$out/convert/$name-mesh.png" --diff "$out/convert/$name-diff.png"
+done
 echo
 echo "demo: HNIs and their reports (JSON) are in $out/hni/, renders (1280x720, CPU ray caster) in $out/render/"
+echo "demo: converted OBJ samples in $out/convert/: NAME.png (HNI), NAME.json (report), NAME-nut.png and"
+echo "      NAME-mesh.png (the HNI and its source mesh from the same camera), NAME-diff.png (their difference)"
