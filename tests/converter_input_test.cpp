@@ -20,6 +20,7 @@
 #include <converter/solid.hpp>
 #include <converter/winding.hpp>
 #include <nut/hni.hpp>
+#include <nut/raycast.hpp>
 
 #include "converter_support.hpp"
 
@@ -277,6 +278,50 @@ TEST(SolidGrid, FacesTiltedByHalfADegreeStillCluster) {
   EXPECT_EQ(c->report.solid.planes, (std::array<int, 3>{2, 2, 2}));
   EXPECT_EQ(c->report.solid.cells[1], 1);
   EXPECT_GT(c->report.solid.nutAreaM2, 0.99 * c->report.solid.areaM2);
+}
+
+// A flat roof flush with the wall tops around it: the faces meet in one plane, so no face plane
+// marks where the roof's material ends. The strip of wall top must keep its own colour.
+TEST(SolidGrid, CoplanarFacesOfTwoMaterialsGetABoundaryBetweenThem) {
+  writeFile("flush.mtl", "newmtl wall\nKd 0.8 0.8 0.8\nnewmtl roof\nKd 0.5 0.2 0.1\n");
+  std::string obj = "mtllib flush.mtl\n";
+  int base = 0;
+  char line[160];
+  // A quad as two triangles, corners counter-clockwise seen from where it faces.
+  const auto quad = [&](const char* material, glm::dvec3 a, glm::dvec3 b, glm::dvec3 c, glm::dvec3 d) {
+    obj += std::string("usemtl ") + material + "\n";
+    for (const glm::dvec3& p : {a, b, c, d}) {
+      std::snprintf(line, sizeof line, "v %.3f %.3f %.3f\n", p.x, p.y, p.z);
+      obj += line;
+    }
+    std::snprintf(line, sizeof line, "f %d %d %d\nf %d %d %d\n", base + 1, base + 2, base + 3, base + 1, base + 3, base + 4);
+    obj += line;
+    base += 4;
+  };
+  const double L = 10, H = 3, s = 0.3;
+  quad("wall", {0, 0, L}, {L, 0, L}, {L, H, L}, {0, H, L});  // +z
+  quad("wall", {L, 0, 0}, {0, 0, 0}, {0, H, 0}, {L, H, 0});  // -z
+  quad("wall", {L, 0, L}, {L, 0, 0}, {L, H, 0}, {L, H, L});  // +x
+  quad("wall", {0, 0, 0}, {0, 0, L}, {0, H, L}, {0, H, 0});  // -x
+  quad("wall", {0, 0, 0}, {L, 0, 0}, {L, 0, L}, {0, 0, L});  // bottom
+  // The top: the roof inset by s, and the four strips of wall top around it (T-junctions).
+  quad("roof", {s, H, L - s}, {L - s, H, L - s}, {L - s, H, s}, {s, H, s});
+  quad("wall", {0, H, L}, {L, H, L}, {L, H, L - s}, {0, H, L - s});
+  quad("wall", {0, H, s}, {L, H, s}, {L, H, 0}, {0, H, 0});
+  quad("wall", {0, H, L - s}, {s, H, L - s}, {s, H, s}, {0, H, s});
+  quad("wall", {L - s, H, L - s}, {L, H, L - s}, {L, H, s}, {L - s, H, s});
+  auto c = convertText("flush", obj);
+  ASSERT_TRUE(c.ok()) << c.error().message;
+  EXPECT_GE(c->report.solid.materialBoundaries, 4);
+  // Straight down onto the wall top's strip, its outer edge, and the roof.
+  const HniRayCaster caster(c->image, c->originM);
+  const auto colourAt = [&](double x, double z) {
+    return caster.trace({x, 10.0, z}, {0, -1, 0}, 0.0, RayCastOptions{}).colour;
+  };
+  EXPECT_EQ(colourAt(0.2, 5), colourAt(0.05, 5));
+  EXPECT_EQ(colourAt(5, 0.2), colourAt(5, 0.05));
+  EXPECT_NE(colourAt(0.2, 5), colourAt(5, 5));
+  EXPECT_EQ(colourAt(0.4, 5), colourAt(5, 5));
 }
 
 TEST(SolidGrid, AnOpenBoxIsStillSolid) {

@@ -47,6 +47,9 @@ constexpr double kConflictShareForRebuild = 0.001;
 constexpr double kConflictShareOfCell = 0.15;
 // ...or this share of the mesh's surface, however big the cell (a gable end under a long pitch).
 constexpr double kConflictShareOfSurface = 0.005;
+// A line where coplanar faces of two materials meet gets a boundary when the strip it would
+// colour wrongly is at least this share of the surface (Builder::addMaterialEdges).
+constexpr double kMaterialEdgeShareOfSurface = 0.0005;
 // Builds of the grid at most (see buildSolidGrid).
 constexpr int kAttempts = 3;
 constexpr std::size_t kMaxSlopeBoundariesPerAxis = 128;
@@ -276,7 +279,9 @@ struct Builder {
   void findSphereOctants();
   void findCornerSlopes();
   void keepPiece(QuadricPiece piece, std::vector<std::uint32_t> members, const std::vector<double>& materialArea);
+  void findMaterialEdges();
   void buildBounds();
+  void addMaterialEdges();
   void addQuadricBounds();
   void closeSlopes();
   void classify(const LazyWinding& winding);
@@ -308,6 +313,11 @@ struct Builder {
   std::array<std::vector<double>, 3> materialConflicts(const std::vector<Share>& shares, double& conflictArea) const;
   void assignMaterials(Block& block, std::vector<Block>& subBlocks, const std::vector<Share>& shares);
   std::array<std::vector<double>, 3> extraBounds;  // from material conflicts
+  struct MaterialLine {
+    double at;      // the coordinate along the axis it is a line of constant value of
+    double length;  // shared by the two materials
+  };
+  std::array<std::vector<MaterialLine>, 3> materialLines;  // findMaterialEdges
 };
 
 
