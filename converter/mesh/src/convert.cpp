@@ -132,14 +132,13 @@ void judgeVariants(std::vector<BuiltVariant>& built, int threads) {
   });
 }
 
-// Builds the variants, each on its own thread (they share nothing), and judges them.
+// Builds the variants, each on its own thread (they share nothing).
 std::vector<BuiltVariant> buildVariants(const SolidGrid& grid, const std::vector<Variant>& variants,
                                         const ConvertOptions& options) {
   std::vector<BuiltVariant> built(variants.size());
   parallelFor(variants.size(), 1, options.solid.threads, [&](std::size_t begin, std::size_t end) {
     for (std::size_t v = begin; v < end; ++v) built[v] = buildVariant(grid, variants[v], options);
   });
-  judgeVariants(built, options.solid.threads);
   return built;
 }
 
@@ -198,6 +197,7 @@ void buildCandidates(const SolidGrid& grid, const std::vector<TurnedBlock>& orde
   if (orders.size() > 1) {
     for (const TurnedBlock& g : orders) variants.push_back(variantsOf(g, base, cells, false).back());
     built = buildVariants(grid, variants, options);
+    judgeVariants(built, options.solid.threads);
     std::vector<std::size_t> rank(orders.size());
     for (std::size_t i = 0; i < rank.size(); ++i) rank[i] = i;
     std::stable_sort(rank.begin(), rank.end(), [&](std::size_t x, std::size_t y) { return smaller(built[x], built[y]); });
