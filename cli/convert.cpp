@@ -1,13 +1,19 @@
 // `nut convert IN.obj -o OUT.png`: converts an OBJ building into an HNI (converter/convert.hpp);
 // `-o FOLDER` converts each object of the file into its own HNI and writes a city manifest.
+#include <algorithm>
+#include <atomic>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <memory>
+#include <mutex>
 #include <set>
 #include <string>
+#include <thread>
+#include <vector>
 #include <unistd.h>
 
+#include <glm/vec3.hpp>
 #include <nlohmann/json.hpp>
 
 #include <converter/city.hpp>
@@ -152,30 +158,70 @@ int run(const ConvertCliOptions& o) {
   if (ec) return fail(o.output + ": cannot create folder (" + ec.message() + ")", kUnreadable);
   converter::CityManifest city;
   city.name = fs::path(o.input).stem().string();
-  nlohmann::json reports = nlohmann::json::array();
+  // File names first, in the objects' order: a name used twice gets _2, _3, ...
+  const std::size_t count = obj->objects.size();
+  std::vector<std::string> stems(count);
   std::set<std::string> used;
-  for (converter::Mesh& mesh : obj->objects) {
-    std::string stem = converter::safeFileStem(mesh.name);
-    for (int k = 2; used.count(stem); ++k) stem = converter::safeFileStem(mesh.name) + "_" + std::to_string(k);
+  for (std::size_t i = 0; i < count; ++i) {
+    std::string stem = converter::safeFileStem(obj->objects[i].name);
+    for (int k = 2; used.count(stem); ++k) stem = converter::safeFileStem(obj->objects[i].name) + "_" + std::to_string(k);
     used.insert(stem);
-    const std::string name = mesh.name;
-    ProgressBar bar(!o.quiet, name);
-    options.progress = [&](std::string_view phase, double f) { bar.update(phase, f); };
-    auto conversion = converter::convertMesh(std::move(mesh), options);
-    if (conversion) bar.update("write", 0);
-    bar.finish();
-    if (!conversion) return fail(o.input + ": object '" + name + "': " + conversion.error().message, kInvalid);
-    const bool hasComplement = !conversion->complement.triangles.empty();
-    const std::string hni = stem + ".png", complement = hasComplement ? stem + ".complement.obj" : "";
-    if (Status s = converter::writeConversion(*conversion, (fs::path(o.output) / hni).string(),
-                                              hasComplement ? (fs::path(o.output) / complement).string() : "",
-                                              effortOf(o));
-        !s)
-      return fail(s.error().message, kUnreadable);
+    stems[i] = stem;
+  }
+  // The buildings are converted side by side, one per worker, each on one thread: most of a small
+  // building's conversion keeps one core busy. What is kept of each is what the manifest, the
+  // report and the summary need, in the objects' order whatever the timing.
+  struct Building {
+    std::string name, hni, complement, error;
+    int exitCode = kOk;
+    glm::dvec3 originM{0.0};
+    converter::ConvertReport report;
+  };
+  std::vector<Building> buildings(count);
+  converter::ConvertOptions perBuilding = options;
+  perBuilding.solid.threads = 1;
+  const unsigned cores = std::max(1u, std::thread::hardware_concurrency());
+  const std::size_t workers = std::min<std::size_t>(count, o.threads > 0 ? static_cast<std::size_t>(o.threads) : cores);
+  std::atomic<std::size_t> next{0}, finished{0};
+  std::mutex progressMutex;
+  ProgressBar bar(!o.quiet, city.name);
+  const auto work = [&] {
+    for (std::size_t i; (i = next++) < count;) {
+      Building& b = buildings[i];
+      b.name = obj->objects[i].name;
+      auto conversion = converter::convertMesh(std::move(obj->objects[i]), perBuilding);
+      if (!conversion) {
+        b.error = o.input + ": object '" + b.name + "': " + conversion.error().message;
+        b.exitCode = kInvalid;
+      } else {
+        const bool hasComplement = !conversion->complement.triangles.empty();
+        b.hni = stems[i] + ".png";
+        b.complement = hasComplement ? stems[i] + ".complement.obj" : "";
+        if (Status s = converter::writeConversion(*conversion, (fs::path(o.output) / b.hni).string(),
+                                                  hasComplement ? (fs::path(o.output) / b.complement).string() : "", effortOf(o));
+            !s) {
+          b.error = s.error().message;
+          b.exitCode = kUnreadable;
+        }
+        b.originM = conversion->originM;
+        b.report = std::move(conversion->report);
+      }
+      const std::lock_guard lock(progressMutex);
+      bar.update("buildings", static_cast<double>(++finished) / static_cast<double>(count));
+    }
+  };
+  std::vector<std::thread> threads;
+  for (std::size_t w = 1; w < workers; ++w) threads.emplace_back(work);
+  work();
+  for (std::thread& t : threads) t.join();
+  bar.finish();
+  nlohmann::json reports = nlohmann::json::array();
+  for (const Building& b : buildings) {
+    if (b.exitCode != kOk) return fail(b.error, b.exitCode);
     // Yaw 0: a turned building carries its yaw inside its HNI, which is in the world frame.
-    city.buildings.push_back({name, hni, complement, conversion->originM, 0.0});
-    reports.push_back(nlohmann::json::parse(converter::reportJson(conversion->report)));
-    if (!o.quiet) printSummary(conversion->report, (fs::path(o.output) / hni).string());
+    city.buildings.push_back({b.name, b.hni, b.complement, b.originM, 0.0});
+    reports.push_back(nlohmann::json::parse(converter::reportJson(b.report)));
+    if (!o.quiet) printSummary(b.report, (fs::path(o.output) / b.hni).string());
   }
   const std::string manifest = (fs::path(o.output) / "city.json").string();
   if (Status s = writeTextFile(manifest, converter::cityJson(city)); !s) return fail(s.error().message, kUnreadable);
@@ -211,7 +257,9 @@ void addConvertCommand(CLI::App& app, int& exitCode) {
                 "Convert a building turned about the vertical in the world frame instead of its own (most of it then "
                 "goes to the complementary mesh)");
   cmd->add_option("--block", o->blocks, "Extract this box of cells as a block, x0,y0,z0:x1,y1,z1 in world metres (repeatable)");
-  cmd->add_option("--threads", o->threads, "Worker threads (0: all cores)")->check(CLI::NonNegativeNumber);
+  cmd->add_option("--threads", o->threads,
+                  "Worker threads (0: all cores); with -o FOLDER the buildings are converted side by side, one per thread")
+      ->check(CLI::NonNegativeNumber);
   cmd->add_option("--png-effort", o->pngEffort,
                   "smallest: Zopfli, about a second per 150 KB of pixels; small: zlib, milliseconds, 5-15 % larger")
       ->check(CLI::IsMember({"small", "smallest"}))

@@ -8,6 +8,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <sstream>
 #include <string>
 
@@ -88,6 +89,36 @@ TEST(ConvertCli, AFolderGetsOneHniPerObjectAndACityManifest) {
     ASSERT_TRUE(png.ok()) << b.hni;
     EXPECT_EQ(png->text.originM, b.positionM) << b.name;  // the manifest places each HNI at its own origin
   }
+}
+
+// Buildings are converted side by side; the files do not depend on how many at once, the manifest
+// keeps the objects' order, and an object that cannot be converted is named, with no manifest.
+TEST(ConvertCli, AFolderIsTheSameWhateverTheThreadsAndNamesAFailingObject) {
+  fs::remove_all(out("street1"));
+  fs::remove_all(out("street2"));
+  ASSERT_EQ(nut("convert " + sample("street.obj") + " -o " + out("street1") + " --quiet --png-effort small --threads 1").exitCode, 0);
+  ASSERT_EQ(nut("convert " + sample("street.obj") + " -o " + out("street2") + " --quiet --png-effort small --threads 3").exitCode, 0);
+  const auto bytes = [](const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    return std::string(std::istreambuf_iterator<char>(in), {});
+  };
+  auto city = readCityJson(out("street2/city.json"));
+  ASSERT_TRUE(city.ok()) << city.error().message;
+  ASSERT_EQ(city->buildings.size(), 4u);
+  EXPECT_EQ(city->buildings[0].name, "street_a");
+  EXPECT_EQ(city->buildings[3].name, "street_d");
+  EXPECT_EQ(bytes(out("street1/city.json")), bytes(out("street2/city.json")));
+  for (const CityBuilding& b : city->buildings) EXPECT_EQ(bytes(out("street1/" + b.hni)), bytes(out("street2/" + b.hni))) << b.hni;
+
+  const std::string obj = out("two.obj");
+  std::ofstream(obj) << "o good\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 0 1\nv 1 0 1\nv 1 1 1\nv 0 1 1\n"
+                        "f 1 4 3 2\nf 5 6 7 8\nf 1 2 6 5\nf 2 3 7 6\nf 3 4 8 7\nf 4 1 5 8\n"
+                        "o sheet\nv 0 0 5\nv 1 0 5\nv 1 0 6\nf 9 10 11\n";
+  fs::remove_all(out("two"));
+  const CliRun r = nut("convert " + obj + " -o " + out("two") + " --quiet");
+  EXPECT_EQ(r.exitCode, 1);
+  EXPECT_NE(r.stderrText.find("object 'sheet'"), std::string::npos) << r.stderrText;
+  EXPECT_FALSE(fs::exists(out("two/city.json")));
 }
 
 TEST(ConvertCli, ManualBlocksAreReported) {
