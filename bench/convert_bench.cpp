@@ -78,10 +78,7 @@ void convertAtTolerance(benchmark::State& state, const std::string& name) {
     kept = std::move(*result);
   }
   state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(mesh.triangles.size()));
-  nut::HniText text;  // as `nut convert` writes the file
-  text.name = name;
-  text.generator = "nut convert";
-  text.originM = kept->originM;
+  const nut::HniText text = nut::converter::hniText(*kept);  // the file as `nut convert` writes it
   const double png = static_cast<double>(nut::encodePng(kept->image, &text, nut::PngEffort::Smallest).size());
   state.counters["hni_bytes"] = png;
   state.counters["decoded_per_hni"] = static_cast<double>(nut::converter::measureMesh(mesh).decodedBytes) / png;

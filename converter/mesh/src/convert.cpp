@@ -379,13 +379,17 @@ Result<Conversion> convertMesh(Mesh mesh, const ConvertOptions& options) {
   return out;
 }
 
-Status writeConversion(Conversion& conversion, const std::string& pngPath, const std::string& complementPath,
-                       PngEffort effort) {
+HniText hniText(const Conversion& conversion) {
   HniText text;
   text.name = conversion.report.name;
   text.generator = "nut convert";
   text.originM = conversion.originM;
-  if (Status s = writeHni(pngPath, conversion.image, text, effort); !s) return s;
+  return text;
+}
+
+Status writeConversion(Conversion& conversion, const std::string& pngPath, const std::string& complementPath,
+                       PngEffort effort) {
+  if (Status s = writeHni(pngPath, conversion.image, hniText(conversion), effort); !s) return s;
   std::error_code ec;
   conversion.report.pngBytes = std::filesystem::file_size(pngPath, ec);
   if (!complementPath.empty()) {

@@ -95,7 +95,11 @@ struct Conversion {
 // HNI beyond the format's limits; each message names the building.
 Result<Conversion> convertMesh(Mesh mesh, const ConvertOptions& options = {});
 
-// Writes the HNI (PNG with the name, generator and world origin in its text chunks) and, when
+// The PNG text chunks `nut convert` writes with the HNI: the building's name, the generator and
+// the world origin.
+HniText hniText(const Conversion& conversion);
+
+// Writes the HNI (PNG with hniText in its text chunks) and, when
 // complementPath is not empty, the complementary mesh as OBJ + MTL; both atomically. Sets
 // report.pngBytes. PngEffort::Small writes in a few milliseconds what Smallest (Zopfli) writes
 // 5-15 % smaller in about a second per 150 KB of pixels.
