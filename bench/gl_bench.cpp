@@ -57,8 +57,9 @@ const Scene& scene() {
 void setRate(benchmark::State& state) { state.SetItemsProcessed(state.iterations() * kWidth * kHeight); }
 
 // A renderer of the back-end holding the HNI (rayCast) or the exported mesh; the first frame,
-// which compiles the shader variants, is drawn before timing.
-void glFrame(benchmark::State& state, nut::viewer::Backend backend, bool rayCast) {
+// which compiles the shader variants, is drawn before timing. `lookup` is the ray caster's.
+void glFrame(benchmark::State& state, nut::viewer::Backend backend, bool rayCast,
+             nut::Lookup lookup = nut::Lookup::Heuristic) {
   const Scene& s = scene();
   nut::viewer::OffscreenOptions options;
   options.backend = backend;
@@ -70,9 +71,11 @@ void glFrame(benchmark::State& state, nut::viewer::Backend backend, bool rayCast
   const nut::Status added = rayCast ? (*renderer)->addHni(s.png.image, s.png.text.originM)
                                     : (*renderer)->addMesh(nut::viewer::meshData(s.mesh, s.model.materials));
   if (!added) fail(added.error().message);
-  if (nut::Status first = (*renderer)->draw(s.camera, {}); !first) fail(first.error().message);
+  nut::RayCastOptions cast;
+  cast.lookup = lookup;
+  if (nut::Status first = (*renderer)->draw(s.camera, cast); !first) fail(first.error().message);
   for (auto _ : state)
-    if (nut::Status drawn = (*renderer)->draw(s.camera, {}); !drawn) fail(drawn.error().message);
+    if (nut::Status drawn = (*renderer)->draw(s.camera, cast); !drawn) fail(drawn.error().message);
   setRate(state);
   state.SetLabel((*renderer)->context().description());
 }
@@ -112,7 +115,11 @@ void embree(benchmark::State& state) {
 using nut::viewer::Backend;
 
 BENCHMARK_CAPTURE(glFrame, gl_raycast/osmesa, Backend::OSMesa, true)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK_CAPTURE(glFrame, gl_raycast_exact/osmesa, Backend::OSMesa, true, nut::Lookup::Exact)
+    ->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK_CAPTURE(glFrame, gl_raycast/egl, Backend::Egl, true)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK_CAPTURE(glFrame, gl_raycast_exact/egl, Backend::Egl, true, nut::Lookup::Exact)
+    ->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(cpuCaster)->Name("cpu_raycast")->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK_CAPTURE(glFrame, gl_mesh_raster/osmesa, Backend::OSMesa, false)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK_CAPTURE(glFrame, gl_mesh_raster/egl, Backend::Egl, false)->Unit(benchmark::kMillisecond)->UseRealTime();

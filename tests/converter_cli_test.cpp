@@ -161,9 +161,9 @@ TEST(ConvertCli, ExitCodes) {
   EXPECT_EQ(r.exitCode, 1);
 }
 
-// `nut render`, with which users look at what `nut convert` wrote: the CPU ray caster reads the
-// exact metadata rows unless told otherwise, the GL one the paper's heuristic.
-TEST(RenderCli, DefaultLookupFollowsTheBackend) {
+// `nut render`, with which users look at what `nut convert` wrote: both back-ends read the exact
+// metadata rows unless told otherwise (the heuristic leaves holes along block seams).
+TEST(RenderCli, DefaultLookupIsExactOnBothBackends) {
   const std::string hni = std::string(NUT_SOURCE_DIR) + "/samples/hni/building.png";
   const auto lookupOf = [](const std::string& statsPath) {
     std::ifstream in(statsPath);
@@ -177,7 +177,11 @@ TEST(RenderCli, DefaultLookupFollowsTheBackend) {
   EXPECT_EQ(readPng(out("render-default.png"))->image, readPng(out("render-exact.png"))->image);
   r = nut("render " + hni + " -o " + out("render-gl.png") + " --size 160x90 --backend gl --stats " + out("render-gl.json"));
   ASSERT_EQ(r.exitCode, 0) << r.stderrText;
-  EXPECT_EQ(lookupOf(out("render-gl.json")), "heuristic");
+  EXPECT_EQ(lookupOf(out("render-gl.json")), "exact");
+  r = nut("render " + hni + " -o " + out("render-gl-heuristic.png") + " --size 160x90 --backend gl --lookup heuristic --stats " +
+          out("render-gl-heuristic.json"));
+  ASSERT_EQ(r.exitCode, 0) << r.stderrText;
+  EXPECT_EQ(lookupOf(out("render-gl-heuristic.json")), "heuristic");
 }
 
 // `nut info --blocks --bytes`, with which users see where an HNI's bytes go.
