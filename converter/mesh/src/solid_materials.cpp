@@ -3,6 +3,7 @@
 // (converter/solid.hpp, step 4).
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <span>
 
 #include <glm/geometric.hpp>
@@ -135,28 +136,56 @@ std::vector<Builder::Share> Builder::computeShares(Mesh& complementOut, SolidSta
           }
           const double pieceArea = polygonArea(piece) * toTrue;
           if (pieceArea <= kMinPieceAreaM2) continue;  // a clipping sliver, not a piece of surface
-          std::array<int, 3> lo{}, hi{};
-          lo[static_cast<std::size_t>(u)] = hi[static_cast<std::size_t>(u)] = i;
-          lo[static_cast<std::size_t>(v)] = hi[static_cast<std::size_t>(v)] = j;
-          lo[static_cast<std::size_t>(a)] = k - 1;
-          hi[static_cast<std::size_t>(a)] = k;
-          // A cell showing a quarter-round sub-block covers the piece only where S is solid
-          // under all of it; where the arc crosses it, the other side's cell shows it.
-          std::array<dvec3, 12> corners;
+          // The piece's corners on its own plane: where along a the surface really is.
+          std::array<dvec3, 12> corners{};
+          double surfaceLo = std::numeric_limits<double>::infinity(), surfaceHi = -surfaceLo;
           for (int m = 0; m < piece.n; ++m) {
-            corners[static_cast<std::size_t>(m)][u] = piece.p[static_cast<std::size_t>(m)].x;
-            corners[static_cast<std::size_t>(m)][v] = piece.p[static_cast<std::size_t>(m)].y;
-            corners[static_cast<std::size_t>(m)][a] = A[static_cast<std::size_t>(k)];
+            dvec3& q = corners[static_cast<std::size_t>(m)];
+            q[u] = piece.p[static_cast<std::size_t>(m)].x;
+            q[v] = piece.p[static_cast<std::size_t>(m)].y;
+            q[a] = (d - normal[u] * q[u] - normal[v] * q[v]) / normal[a];
+            surfaceLo = std::min(surfaceLo, q[a]);
+            surfaceHi = std::max(surfaceHi, q[a]);
           }
-          const std::span<const dvec3> points(corners.data(), static_cast<std::size_t>(piece.n));
-          const bool solidLo = k > 0 && solidAt(index(lo), points);
-          const bool solidHi = k < n[static_cast<std::size_t>(a)] && solidAt(index(hi), points);
+          // The cell faces at boundary kk under the piece: whether the cells below and above are
+          // solid there. A cell showing a quarter-round sub-block covers the piece only where S
+          // is solid under all of it; where the arc crosses it, the other side's cell shows it.
+          struct Sides {
+            std::size_t lo, hi;  // the cells below and above the boundary
+            bool solidLo, solidHi;
+          };
+          const auto sidesAt = [&](int kk) {
+            std::array<int, 3> lo{}, hi{};
+            lo[static_cast<std::size_t>(u)] = hi[static_cast<std::size_t>(u)] = i;
+            lo[static_cast<std::size_t>(v)] = hi[static_cast<std::size_t>(v)] = j;
+            lo[static_cast<std::size_t>(a)] = kk - 1;
+            hi[static_cast<std::size_t>(a)] = kk;
+            std::array<dvec3, 12> onBoundary = corners;
+            for (int m = 0; m < piece.n; ++m) onBoundary[static_cast<std::size_t>(m)][a] = A[static_cast<std::size_t>(kk)];
+            const std::span<const dvec3> points(onBoundary.data(), static_cast<std::size_t>(piece.n));
+            return Sides{kk > 0 ? index(lo) : 0, kk < n[static_cast<std::size_t>(a)] ? index(hi) : 0,
+                         kk > 0 && solidAt(index(lo), points), kk < n[static_cast<std::size_t>(a)] && solidAt(index(hi), points)};
+          };
+          Sides sides = sidesAt(k);
+          // A slightly tilted face spans more than one boundary of its axis: where the cells at
+          // its cluster's boundary are empty on both sides, the solid's face may be at the next
+          // boundary, still within the tolerance of the surface (a wall 0.1 degree off over
+          // 10 m). That face shows it; otherwise it would take the colour of the cell's other
+          // faces (a ground plate's) with the true wall in the mesh a few millimetres away.
+          for (int kk : {k - 1, k + 1}) {
+            if (sides.solidLo != sides.solidHi) break;
+            if (kk < 0 || kk > n[static_cast<std::size_t>(a)]) continue;
+            const double at = A[static_cast<std::size_t>(kk)];
+            if (at < surfaceLo - tol || at > surfaceHi + tol) continue;
+            if (const Sides near = sidesAt(kk); near.solidLo != near.solidHi) sides = near;
+          }
+          const bool solidLo = sides.solidLo, solidHi = sides.solidHi;
           if (solidLo != solidHi) {
             // The face is on the +a side of the cell below it, on the -a side of the cell above.
             // One that faces into the solid is an inner face (the bottom of a dome standing on
             // the roof): it only counts where nothing else covers the cell.
             const bool facesOut = (normal[a] > 0) == solidLo;
-            out.shares.push_back({index(solidLo ? lo : hi), material, static_cast<std::uint8_t>(2 * a + (solidLo ? 1 : 0)),
+            out.shares.push_back({solidLo ? sides.lo : sides.hi, material, static_cast<std::uint8_t>(2 * a + (solidLo ? 1 : 0)),
                                   facesOut ? pieceArea : kInnerFaceWeight * pieceArea});
             out.nut += pieceArea;
           } else if (!solidLo) {
@@ -169,14 +198,7 @@ std::vector<Builder::Share> Builder::computeShares(Mesh& complementOut, SolidSta
               out.nut += pieceArea;
               continue;
             }
-            std::array<dvec3, 12> poly;
-            for (int m = 0; m < piece.n; ++m) {
-              dvec3& q = poly[static_cast<std::size_t>(m)];
-              q[u] = piece.p[static_cast<std::size_t>(m)].x;
-              q[v] = piece.p[static_cast<std::size_t>(m)].y;
-              q[a] = (d - normal[u] * q[u] - normal[v] * q[v]) / normal[a];
-            }
-            uncovered.emplace_back(poly, piece.n);
+            uncovered.emplace_back(corners, piece.n);
             uncoveredArea += pieceArea;
             out.complementArea += pieceArea;
           } else {
