@@ -168,8 +168,8 @@ std::vector<Builder::Share> Builder::computeShares(Mesh& complementOut, SolidSta
           };
           Sides sides = sidesAt(k);
           // A slightly tilted face spans more than one boundary of its axis: where the cells at
-          // its cluster's boundary are empty on both sides, the solid's face may be at the next
-          // boundary, still within the tolerance of the surface (a wall 0.1 degree off over
+          // its cluster's boundary are both empty or both solid, the solid's face may be at the
+          // next boundary, still within the tolerance of the surface (a wall 0.1 degree off over
           // 10 m). That face shows it; otherwise it would take the colour of the cell's other
           // faces (a ground plate's) with the true wall in the mesh a few millimetres away.
           for (int kk : {k - 1, k + 1}) {
