@@ -163,8 +163,10 @@ std::vector<Builder::Share> Builder::computeShares(Mesh& complementOut, SolidSta
             std::array<dvec3, 12> onBoundary = corners;
             for (int m = 0; m < piece.n; ++m) onBoundary[static_cast<std::size_t>(m)][a] = A[static_cast<std::size_t>(kk)];
             const std::span<const dvec3> points(onBoundary.data(), static_cast<std::size_t>(piece.n));
-            return Sides{kk > 0 ? index(lo) : 0, kk < n[static_cast<std::size_t>(a)] ? index(hi) : 0,
-                         kk > 0 && solidAt(index(lo), points), kk < n[static_cast<std::size_t>(a)] && solidAt(index(hi), points)};
+            Sides s{0, 0, false, false};
+            if (kk > 0) s.lo = index(lo), s.solidLo = solidAt(s.lo, points);
+            if (kk < n[static_cast<std::size_t>(a)]) s.hi = index(hi), s.solidHi = solidAt(s.hi, points);
+            return s;
           };
           Sides sides = sidesAt(k);
           // A slightly tilted face spans more than one boundary of its axis: where the cells at
