@@ -9,7 +9,9 @@
 #include <fstream>
 #include <numbers>
 #include <random>
+#include <sstream>
 #include <string>
+#include <utility>
 
 #include <glm/geometric.hpp>
 
@@ -264,6 +266,7 @@ TEST(WindingNumber, FastMatchesExactAndClassifiesABox) {
 TEST(SolidGrid, ABoxIsOneSolidCell) {
   auto c = convertText("box", boxObj({10, 20, 30}, {14, 23, 32}));
   ASSERT_TRUE(c.ok()) << c.error().message;
+  EXPECT_TRUE(c->report.solid.closedSurface);
   EXPECT_EQ(c->originM, glm::dvec3(10, 20, 30));
   EXPECT_EQ(c->report.solid.cells, (std::array<int, 3>{1, 1, 1}));
   EXPECT_EQ(c->report.solid.solidCells, 1);
@@ -312,6 +315,9 @@ TEST(SolidGrid, CoplanarFacesOfTwoMaterialsGetABoundaryBetweenThem) {
   quad("wall", {L - s, H, L - s}, {L, H, L - s}, {L, H, s}, {L - s, H, s});
   auto c = convertText("flush", obj);
   ASSERT_TRUE(c.ok()) << c.error().message;
+  // The top's T-junctions leave edges used once, yet every edge cancels along its line.
+  EXPECT_GT(c->report.check.boundaryEdges, 0u);
+  EXPECT_TRUE(c->report.solid.closedSurface);
   EXPECT_GE(c->report.solid.materialBoundaries, 4);
   // Straight down onto the wall top's strip, its outer edge, and the roof.
   const HniRayCaster caster(c->image, c->originM);
@@ -331,7 +337,46 @@ TEST(SolidGrid, AnOpenBoxIsStillSolid) {
   auto c = convertText("openbox", obj);
   ASSERT_TRUE(c.ok()) << c.error().message;
   EXPECT_FALSE(c->report.check.closed());
+  EXPECT_FALSE(c->report.solid.closedSurface);
   EXPECT_EQ(c->report.solid.solidCells, 1);
+}
+
+TEST(SolidGrid, WallsStandingOnABasePlateEncloseASolid) {
+  // A closed base plate and a closed roof slab, and between them four walls that are single
+  // quads standing on the plate (as game-asset buildings are made). Every vertical line crosses
+  // the plate and the slab only, so counting crossings would leave the room between them empty;
+  // the walls' winding number makes it inside.
+  std::string obj =
+      "v 0 0.2 0\nv 4 0.2 0\nv 4 0.2 4\nv 0 0.2 4\nv 0 3 0\nv 4 3 0\nv 4 3 4\nv 0 3 4\n"
+      "f 1 5 6 2\nf 3 7 8 4\nf 4 8 5 1\nf 2 6 7 3\n";
+  // Each box's faces renumbered after the vertices before it (OBJ indices are file-wide).
+  int vertices = 8;
+  for (const auto& [lo, hi] : {std::pair{glm::dvec3(0, 0, 0), glm::dvec3(4, 0.2, 4)},
+                               std::pair{glm::dvec3(0, 3, 0), glm::dvec3(4, 3.2, 4)}}) {
+    std::istringstream box(boxObj(lo, hi));
+    for (std::string line; std::getline(box, line);) {
+      if (line.rfind("f ", 0) == 0) {
+        std::istringstream corners(line.substr(2));
+        line = "f";
+        for (int corner; corners >> corner;) {
+          line += ' ';
+          line += std::to_string(corner + vertices);
+        }
+      }
+      obj += line + "\n";
+    }
+    vertices += 8;
+  }
+  auto c = convertText("walls_on_plate", obj);
+  ASSERT_TRUE(c.ok()) << c.error().message;
+  EXPECT_FALSE(c->report.solid.closedSurface);
+  EXPECT_EQ(c->report.solid.cells, (std::array<int, 3>{1, 3, 1}));
+  EXPECT_EQ(c->report.solid.solidCells, 3);
+  // A ray at mid-height towards the front wall stops on it, in the wall's plane.
+  const HniRayCaster caster(c->image, c->originM);
+  const RayResult hit = caster.trace({2, 1.5, 10}, {0, 0, -1}, 0.0, RayCastOptions{});
+  EXPECT_TRUE(hit.hit);
+  EXPECT_NEAR(hit.distanceM, 6.0, 1e-3);
 }
 
 TEST(SolidGrid, AGableRoofBecomesWedges) {

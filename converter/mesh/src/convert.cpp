@@ -313,8 +313,6 @@ Result<Conversion> convertMesh(Mesh mesh, const ConvertOptions& options) {
   report.check = checkAndRepair(mesh);
   if (mesh.triangles.empty())
     return Error{mesh.name + ": nothing to convert: all " + std::to_string(report.inputTriangles) + " faces are degenerate"};
-  report.insideTest = std::string("generalized winding number at cell centres (") +
-                      (report.check.closed() ? "closed mesh" : "open mesh: no closed surface needed") + ")";
   phases.end("check");
 
   // A building turned about the vertical is converted in its own frame (align.hpp); a dominant
@@ -354,6 +352,11 @@ Result<Conversion> convertMesh(Mesh mesh, const ConvertOptions& options) {
                                               : "tolerance " + std::to_string(solidOptions.toleranceM) + " m"));
     grid = std::move(*built);
     report.solid = grid->stats;
+    const SolidStats& s = grid->stats;
+    report.insideTest = s.closedSurface
+        ? "crossings counted along the lines of cell centres (closed surface, T-junctions matched); generalized "
+          "winding number on " + std::to_string(s.windingColumns) + " of " + std::to_string(s.columns) + " lines"
+        : "generalized winding number at cell centres (open surface: no closed surface needed)";
     out.originM = report.originM = grid->originM;
     const std::string suffix = coarser == 0 ? "" : " (coarser " + std::to_string(coarser) + ")";
     phases.end("solid" + suffix);
@@ -456,6 +459,8 @@ std::string reportJson(const ConvertReport& r) {
                 {"quadric_cells", s.quadricCells},
                 {"sphere_octant_cells", s.sphereOctantCells},
                 {"pyramid_cells", s.pyramidCells},
+                {"closed_surface", s.closedSurface},
+                {"winding_columns", s.windingColumns},
                 {"winding_evaluations", s.windingEvaluations},
                 {"ambiguous_cells", s.ambiguousCells}}},
       {"surface", {{"area_m2", s.areaM2},

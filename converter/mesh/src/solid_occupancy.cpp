@@ -17,10 +17,13 @@ namespace nut::converter::solid {
 // axis s is a line; its crossings with the faces are gathered and, moving along +s, a face whose
 // normal points against the line is an entry (+1) and one along it an exit (-1). Crossings at one
 // position (the line through an edge or a vertex shared by several faces) count once per
-// direction, so an edge is never counted twice. Where the running count never drops below zero
-// and ends at zero, the line met a closed surface and the count is the winding number itself. Any
-// other column (it passed through a hole, or met faces turned the wrong way) is decided by the
-// generalized winding number, evaluated once per run of cells between two crossings.
+// direction, so an edge is never counted twice. On a closed surface (closed_surface.hpp), where
+// the running count never drops below zero and ends at zero, the count is the winding number
+// itself. Any other column (it met faces turned the wrong way) and every column of an open
+// surface is decided by the generalized winding number, evaluated once per run of cells between
+// two crossings: an open surface's winding number is not a count of crossings, even on a line
+// that crosses none of its open parts (walls standing on a base plate make the room inside them
+// solid; a line under a gable's overhanging roof crosses both pitches with air between them).
 void Builder::classify(const LazyWinding& winding) {
   const int s = static_cast<int>(std::max_element(n.begin(), n.end()) - n.begin());
   const int b = (s + 1) % 3, c = (s + 2) % 3;
@@ -116,7 +119,7 @@ void Builder::classify(const LazyWinding& winding) {
 
           // Merge crossings at one position: at most one entry and one exit each.
           events.clear();
-          bool closed = true;
+          bool closed = stats.closedSurface;
           int running = 0;
           for (auto it = first; it != last;) {
             auto group = it;

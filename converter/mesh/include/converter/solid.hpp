@@ -24,10 +24,10 @@
 //    is the triangle through the three box corners next to one corner: a chamfered corner), as
 //    one pyramid or inverse-pyramid cell.
 // 3. Occupancy. Lines through the cell centres along one axis are intersected with the faces.
-//    Where a line meets a closed surface (entries and exits balance, merged where the line passes
-//    through a shared edge or vertex), the running count of entries minus exits is the winding
-//    number and decides every cell on it exactly. Elsewhere (holes, open shells, flipped faces) a
-//    cell is inside when the generalized winding number at its centre is at least 1/2 in magnitude
+//    When the mesh is a closed surface (every edge cancels, T-junctions matched) and a line's
+//    entries and exits balance (merged where it passes through a shared edge or vertex), the
+//    running count of entries minus exits is the winding number and decides every cell on it
+//    exactly. Otherwise (holes, open shells, flipped faces) a cell is inside when the generalized winding number at its centre is at least 1/2 in magnitude
 //    (winding.hpp), which needs no closed mesh and no luck at edges; cells between the same two
 //    crossings share one evaluation, and an ambiguous value (a centre on a surface) is sampled at
 //    four more points. Cells that faces of the complementary mesh cut stay solid only when they
@@ -88,6 +88,7 @@ struct SolidStats {
   int cornerSlopesAsSubBlocks = 0;    // of those, shown by a block of their own (cut by other boundaries)
   long long pyramidCells = 0;         // pyramid and inverse pyramid cells
   long long trimmedCells = 0;         // cut by the complementary mesh and not inside all over: empty
+  bool closedSurface = false;         // every edge cancels (T-junctions matched): lines are counted
   long long columns = 0;              // lines of cells along the sweep axis
   long long windingColumns = 0;       // of those, not closed along the line: decided by winding numbers
   long long windingEvaluations = 0;
