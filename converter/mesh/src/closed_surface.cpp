@@ -77,9 +77,9 @@ Run runOnLine(const dvec3& a, const dvec3& b, int weight, const dvec3& corner) {
   return run;
 }
 
-// Whether the runs of one line cancel everywhere along it.
-bool cancels(std::span<const Run> runs) {
-  std::vector<std::pair<double, int>> events;
+// Whether the runs of one line cancel everywhere along it (events: scratch space).
+bool cancels(std::span<const Run> runs, std::vector<std::pair<double, int>>& events) {
+  events.clear();
   for (const Run& r : runs) {
     events.emplace_back(r.from, r.weight);
     events.emplace_back(r.to, -r.weight);
@@ -131,10 +131,11 @@ bool isClosedSurface(const Mesh& mesh) {
   }
 
   std::sort(runs.begin(), runs.end(), [](const Run& x, const Run& y) { return x.line < y.line; });
+  std::vector<std::pair<double, int>> events;
   for (std::size_t i = 0; i < runs.size();) {
     std::size_t j = i;
     while (j < runs.size() && runs[j].line == runs[i].line) ++j;
-    if (!cancels(std::span<const Run>(runs.data() + i, j - i))) return false;
+    if (!cancels(std::span<const Run>(runs.data() + i, j - i), events)) return false;
     i = j;
   }
   return true;
