@@ -27,8 +27,9 @@
 //    When the mesh is a closed surface (every edge cancels, T-junctions matched) and a line's
 //    entries and exits balance (merged where it passes through a shared edge or vertex), the
 //    running count of entries minus exits is the winding number and decides every cell on it
-//    exactly. Otherwise (holes, open shells, flipped faces) a cell is inside when the generalized winding number at its centre is at least 1/2 in magnitude
-//    (winding.hpp), which needs no closed mesh and no luck at edges; cells between the same two
+//    exactly. Otherwise (holes, open shells, flipped faces) a cell is inside when the generalized
+//    winding number at its centre is at least 1/2 in magnitude (winding.hpp), which needs no
+//    closed mesh and no luck at edges; cells between the same two
 //    crossings share one evaluation, and an ambiguous value (a centre on a surface) is sampled at
 //    four more points. Cells that faces of the complementary mesh cut stay solid only when they
 //    are inside all over, so they never poke through the mesh.
@@ -90,7 +91,7 @@ struct SolidStats {
   long long trimmedCells = 0;         // cut by the complementary mesh and not inside all over: empty
   bool closedSurface = false;         // every edge cancels (T-junctions matched): lines are counted
   long long columns = 0;              // lines of cells along the sweep axis
-  long long windingColumns = 0;       // of those, not closed along the line: decided by winding numbers
+  long long windingColumns = 0;       // of those, decided by winding numbers (all, on an open surface)
   long long windingEvaluations = 0;
   long long ambiguousCells = 0;       // needed the extra samples
   int sweepAxis = 0;
