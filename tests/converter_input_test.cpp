@@ -1,7 +1,8 @@
 // Mesh converter, first steps: the OBJ + MTL reader and its errors (file:line), objects and
 // materials, z-up; the mesh checks and orientation repair; the generalized winding number against
 // its exact sum; the solid grid on analytic meshes (a box, a box tilted by half a degree, an open
-// box, a gable roof of wedges, a thin sheet left to the complementary mesh); the city manifest.
+// box, walls standing on a base plate, a gable roof of wedges, a thin sheet left to the
+// complementary mesh); the city manifest.
 #include <gtest/gtest.h>
 
 #include <cmath>
