@@ -267,7 +267,7 @@ TEST(WindingNumber, FastMatchesExactAndClassifiesABox) {
 TEST(SolidGrid, ABoxIsOneSolidCell) {
   auto c = convertText("box", boxObj({10, 20, 30}, {14, 23, 32}));
   ASSERT_TRUE(c.ok()) << c.error().message;
-  EXPECT_TRUE(c->report.solid.closedSurface);
+  EXPECT_TRUE(c->report.check.closedSurface);
   EXPECT_EQ(c->originM, glm::dvec3(10, 20, 30));
   EXPECT_EQ(c->report.solid.cells, (std::array<int, 3>{1, 1, 1}));
   EXPECT_EQ(c->report.solid.solidCells, 1);
@@ -318,7 +318,7 @@ TEST(SolidGrid, CoplanarFacesOfTwoMaterialsGetABoundaryBetweenThem) {
   ASSERT_TRUE(c.ok()) << c.error().message;
   // The top's T-junctions leave edges used once, yet every edge cancels along its line.
   EXPECT_GT(c->report.check.boundaryEdges, 0u);
-  EXPECT_TRUE(c->report.solid.closedSurface);
+  EXPECT_TRUE(c->report.check.closedSurface);
   EXPECT_GE(c->report.solid.materialBoundaries, 4);
   // Straight down onto the wall top's strip, its outer edge, and the roof.
   const HniRayCaster caster(c->image, c->originM);
@@ -338,7 +338,7 @@ TEST(SolidGrid, AnOpenBoxIsStillSolid) {
   auto c = convertText("openbox", obj);
   ASSERT_TRUE(c.ok()) << c.error().message;
   EXPECT_FALSE(c->report.check.closed());
-  EXPECT_FALSE(c->report.solid.closedSurface);
+  EXPECT_FALSE(c->report.check.closedSurface);
   EXPECT_EQ(c->report.solid.solidCells, 1);
 }
 
@@ -370,7 +370,7 @@ TEST(SolidGrid, WallsStandingOnABasePlateEncloseASolid) {
   }
   auto c = convertText("walls_on_plate", obj);
   ASSERT_TRUE(c.ok()) << c.error().message;
-  EXPECT_FALSE(c->report.solid.closedSurface);
+  EXPECT_FALSE(c->report.check.closedSurface);
   EXPECT_EQ(c->report.solid.cells, (std::array<int, 3>{1, 3, 1}));
   EXPECT_EQ(c->report.solid.solidCells, 3);
   // A ray at mid-height towards the front wall stops on it, in the wall's plane.

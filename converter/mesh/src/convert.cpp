@@ -340,6 +340,7 @@ Result<Conversion> convertMesh(Mesh mesh, const ConvertOptions& options) {
   std::string lastError;
   for (int coarser = 0; coarser < kCoarserAttempts; ++coarser) {
     SolidOptions solidOptions = options.solid;
+    solidOptions.closedSurface = report.check.closedSurface;
     solidOptions.progress = [&](double f) { progress("solid", f); };
     if (coarser > 0) solidOptions.partialWedges = false;
     if (coarser > 1) solidOptions.toleranceM *= std::pow(2.0, coarser - 1);
@@ -353,7 +354,7 @@ Result<Conversion> convertMesh(Mesh mesh, const ConvertOptions& options) {
     grid = std::move(*built);
     report.solid = grid->stats;
     const SolidStats& s = grid->stats;
-    report.insideTest = s.closedSurface
+    report.insideTest = report.check.closedSurface
         ? "crossings counted along the lines of cell centres (closed surface, T-junctions matched); generalized "
           "winding number on " + std::to_string(s.windingColumns) + " of " + std::to_string(s.columns) + " lines"
         : "generalized winding number at cell centres (open surface: no closed surface needed)";
@@ -445,7 +446,8 @@ std::string reportJson(const ConvertReport& r) {
                  {"inconsistent_edges", r.check.inconsistentEdges},
                  {"pieces", r.check.components},
                  {"flipped_faces", r.check.flippedTriangles},
-                 {"closed", r.check.closed()}}},
+                 {"closed", r.check.closed()},
+                 {"closed_surface", r.check.closedSurface}}},
       {"inside_test", r.insideTest},
       {"alignment", {{"yaw_deg", r.yawDeg}, {"applied", r.yawApplied}}},
       {"grid", {{"planes", s.planes},
@@ -459,7 +461,6 @@ std::string reportJson(const ConvertReport& r) {
                 {"quadric_cells", s.quadricCells},
                 {"sphere_octant_cells", s.sphereOctantCells},
                 {"pyramid_cells", s.pyramidCells},
-                {"closed_surface", s.closedSurface},
                 {"winding_columns", s.windingColumns},
                 {"winding_evaluations", s.windingEvaluations},
                 {"ambiguous_cells", s.ambiguousCells}}},

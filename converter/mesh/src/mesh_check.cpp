@@ -14,6 +14,7 @@
 
 #include <glm/geometric.hpp>
 
+#include "closed_surface.hpp"
 #include "union_find.hpp"
 
 namespace nut::converter {
@@ -111,7 +112,8 @@ std::string MeshCheck::summary() const {
                   std::to_string(components) + " pieces; " +
                   (closed() ? std::string("closed") : std::string("open: ") + std::to_string(boundaryEdges) +
                                                           " boundary edges, " + std::to_string(nonManifoldEdges) +
-                                                          " edges shared by more than two faces");
+                                                          " edges shared by more than two faces" +
+                                                          (closedSurface ? ", a closed surface once T-junctions are matched" : ""));
   if (degenerate) s += "; " + std::to_string(degenerate) + " degenerate faces removed";
   if (slivers) s += "; " + std::to_string(slivers) + " slivers";
   if (duplicateFaces) s += "; " + std::to_string(duplicateFaces) + " duplicate faces";
@@ -254,14 +256,26 @@ MeshCheck checkAndRepair(Mesh& mesh) {
   // A closed piece faces outwards when its volume is positive. An open one has no inside to go
   // by (a roof tray between parapets has a negative volume and is right), so it keeps the
   // orientation most of its area came with.
+  std::vector<std::uint8_t> turnedOut(w.triangles.size(), 0);
   for (std::size_t f = 0; f < w.triangles.size(); ++f) {
     const Piece& p = info[pieceIndex[root[f]]];
     if (p.open ? 2 * p.turnedArea > p.area : p.volume < 0) {
       apply(f);
       flipped[f] ^= 1;
+      turnedOut[f] = 1;
     }
   }
   check.flippedTriangles = static_cast<std::size_t>(std::count(flipped.begin(), flipped.end(), 1));
+
+  // Closed surface: what the repaired faces leave uncancelled on an edge cancels along its line.
+  for (EdgeUse& use : uses) use.forward = use.forward != (turnedOut[use.face] != 0);
+  std::vector<UncancelledEdge> uncancelled;
+  forEachEdge(uses, [&](std::size_t i, std::size_t j) {
+    int weight = 0;
+    for (std::size_t k = i; k < j; ++k) weight += uses[k].forward ? 1 : -1;
+    if (weight != 0) uncancelled.push_back({w.points[uses[i].key >> 32], w.points[uses[i].key & 0xffffffffu], weight});
+  });
+  check.closedSurface = cancelAlongLines(uncancelled);
   return check;
 }
 

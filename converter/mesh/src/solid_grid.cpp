@@ -15,7 +15,6 @@
 
 #include <nut/units.hpp>
 
-#include "closed_surface.hpp"
 #include "solid_builder.hpp"
 
 namespace nut::converter {
@@ -549,7 +548,6 @@ Result<SolidGrid> buildSolidGrid(const Mesh& mesh, const SolidOptions& options) 
   builder.findSlopes();
   builder.findMaterialEdges();
   const LazyWinding winding(mesh);
-  builder.stats.closedSurface = isClosedSurface(mesh);
   // The grid is built again (at most kAttempts times in all) when a slope did not come out as
   // wedges or a quarter-round piece, sphere octant or corner slope as its cells (its boundaries
   // were added for nothing) or cells show faces of different materials (materialConflicts adds

@@ -17,7 +17,7 @@ namespace nut::converter::solid {
 // axis s is a line; its crossings with the faces are gathered and, moving along +s, a face whose
 // normal points against the line is an entry (+1) and one along it an exit (-1). Crossings at one
 // position (the line through an edge or a vertex shared by several faces) count once per
-// direction, so an edge is never counted twice. On a closed surface (closed_surface.hpp), where
+// direction, so an edge is never counted twice. On a closed surface (MeshCheck::closedSurface), where
 // the running count never drops below zero and ends at zero, the count is the winding number
 // itself. Any other column (it met faces turned the wrong way) and every column of an open
 // surface is decided by the generalized winding number, evaluated once per run of cells between
@@ -119,7 +119,7 @@ void Builder::classify(const LazyWinding& winding) {
 
           // Merge crossings at one position: at most one entry and one exit each.
           events.clear();
-          bool closed = stats.closedSurface;
+          bool closed = options.closedSurface;
           int running = 0;
           for (auto it = first; it != last;) {
             auto group = it;

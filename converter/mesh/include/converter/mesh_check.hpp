@@ -27,6 +27,10 @@ struct MeshCheck {
   std::size_t inconsistentEdges = 0;  // two faces that run the edge the same way (one is flipped)
   std::size_t components = 0;         // pieces connected through manifold edges
   std::size_t flippedTriangles = 0;   // turned by the orientation repair
+  // After the repair, every edge cancels (is run as often one way as the other) once edges that
+  // meet at T-junctions are matched along their lines (closed_surface.hpp): the occupancy step may
+  // count crossings along lines of cells.
+  bool closedSurface = false;
   bool closed() const { return boundaryEdges == 0 && nonManifoldEdges == 0; }
   // One line per finding, for the report and stderr.
   std::string summary() const;
@@ -34,7 +38,8 @@ struct MeshCheck {
 
 // Checks `mesh` and repairs it in place: removes degenerate triangles, orients every connected
 // piece consistently, and turns closed pieces outwards (positive signed volume); an open piece
-// keeps the orientation most of its area had. Positions and materials are kept.
+// keeps the orientation most of its area had. Positions and materials are kept. Then decides
+// whether the repaired mesh is a closed surface.
 MeshCheck checkAndRepair(Mesh& mesh);
 
 }  // namespace nut::converter

@@ -63,6 +63,9 @@ struct SolidOptions {
   bool partialWedges = true;
   std::size_t maxCells = 64'000'000;  // refuse grids larger than this (memory)
   int threads = 0;                  // 0: all cores
+  // The mesh is a closed surface (MeshCheck::closedSurface): lines of cells whose crossings
+  // balance are counted; otherwise every cell asks the winding number.
+  bool closedSurface = false;
   // Called from the calling thread with the fraction of cells classified so far.
   std::function<void(double)> progress;
 };
@@ -89,7 +92,6 @@ struct SolidStats {
   int cornerSlopesAsSubBlocks = 0;    // of those, shown by a block of their own (cut by other boundaries)
   long long pyramidCells = 0;         // pyramid and inverse pyramid cells
   long long trimmedCells = 0;         // cut by the complementary mesh and not inside all over: empty
-  bool closedSurface = false;         // every edge cancels (T-junctions matched): lines are counted
   long long columns = 0;              // lines of cells along the sweep axis
   long long windingColumns = 0;       // of those, decided by winding numbers (all, on an open surface)
   long long windingEvaluations = 0;
