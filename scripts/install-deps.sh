@@ -6,7 +6,7 @@ set -euo pipefail
 packages=(
   build-essential cmake pkg-config
   # core: PNG I/O, maths, CLI, JSON
-  libopenimageio-dev openimageio-tools zlib1g-dev libzopfli-dev libglm-dev
+  libpng-dev zlib1g-dev libzopfli-dev libglm-dev
   libcli11-dev nlohmann-json3-dev
   # the mesh reference renderer: OBJ/MTL reading and Embree ray tracing
   libtinyobjloader-dev libembree-dev libtbb-dev

@@ -1,9 +1,14 @@
-// PNG reading through OpenImageIO and writing through our encoder (png_encode.hpp), bit-exact for
+// PNG reading through libpng and writing through our encoder (png_encode.hpp), bit-exact for
 // RGBA8, with the HNI text chunks; PFM and text files with the same atomic-write rule.
+//
+// libpng rather than an image library such as OpenImageIO: a PNG is the only image we read, and
+// loading OpenImageIO's plugins' 260 shared libraries took 0.25 s at the start of every process.
 #include <nut/png_io.hpp>
 
-#include <OpenImageIO/imageio.h>
+#include <png.h>
 #include <zlib.h>
+
+#include <csetjmp>
 
 #include <cerrno>
 #include <cstdio>
@@ -11,6 +16,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <memory>
 #include <random>
 #include <sstream>
 
@@ -29,9 +35,6 @@ std::filesystem::path temporaryPath(const std::filesystem::path& path) {
   return path.parent_path() / (path.filename().string() + ".tmp" + std::to_string(device()));
 }
 
-// OpenImageIO's error text may span lines (libpng adds its own); keep the first.
-std::string firstLine(const std::string& text) { return text.substr(0, text.find('\n')); }
-
 std::uint32_t readBigEndian32(const std::uint8_t* p) {
   return static_cast<std::uint32_t>(p[0]) << 24 | static_cast<std::uint32_t>(p[1]) << 16 |
          static_cast<std::uint32_t>(p[2]) << 8 | p[3];
@@ -39,9 +42,7 @@ std::uint32_t readBigEndian32(const std::uint8_t* p) {
 
 // Walks the PNG chunk structure (signature, lengths, CRCs, IHDR first, IEND last) so that a
 // truncated or corrupted file gets one precise error instead of a decoder's complaint midway.
-Status checkPngStructure(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  const std::vector<std::uint8_t> bytes{std::istreambuf_iterator<char>(in), {}};
+Status checkPngStructure(const std::string& path, const std::vector<std::uint8_t>& bytes) {
   static constexpr std::uint8_t kSignature[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
   if (bytes.size() < 8 || !std::equal(kSignature, kSignature + 8, bytes.begin()))
     return Error{path + ": not a PNG file (bad signature)"};
@@ -63,6 +64,90 @@ Status checkPngStructure(const std::string& path) {
     at += 12 + length;
     if (type == "IEND") return Ok{};
   }
+}
+
+// A decode in progress. It lives on the heap: libpng reports errors by longjmp back to
+// decodePng, after which automatic variables changed since the setjmp would be indeterminate.
+struct PngDecode {
+  const std::vector<std::uint8_t>* bytes = nullptr;
+  std::size_t at = 0;  // next byte libpng reads
+  std::string error;
+  int width = 0, height = 0;
+  std::vector<std::uint8_t> rgba;
+  std::vector<png_bytep> rows;
+  std::vector<std::pair<std::string, std::string>> text;  // keyword, value; later chunks win
+};
+
+// The largest image read: 2^28 pixels (1 GiB of RGBA8), far above any HNI (4096 x 4096).
+constexpr std::uint64_t kMaxPixels = std::uint64_t{1} << 28;
+
+void onPngError(png_structp png, png_const_charp message) {
+  static_cast<PngDecode*>(png_get_error_ptr(png))->error = message;
+  png_longjmp(png, 1);
+}
+
+void onPngWarning(png_structp, png_const_charp) {}  // warnings (unknown chunks, sRGB profiles) are not errors here
+
+void readFromMemory(png_structp png, png_bytep out, png_size_t length) {
+  auto* decode = static_cast<PngDecode*>(png_get_io_ptr(png));
+  if (length > decode->bytes->size() - decode->at) png_error(png, "read past the end of the file");
+  std::memcpy(out, decode->bytes->data() + decode->at, length);
+  decode->at += length;
+}
+
+void collectText(png_structp png, png_infop info, PngDecode& decode) {
+  png_textp text = nullptr;
+  const int count = png_get_text(png, info, &text, nullptr);
+  for (int i = 0; i < count; ++i) decode.text.emplace_back(text[i].key, text[i].text ? text[i].text : "");
+}
+
+// Everything that may longjmp; no automatic object here has a destructor to skip.
+void decodeInto(png_structp png, png_infop info, png_infop end, PngDecode& decode) {
+  png_set_read_fn(png, &decode, readFromMemory);
+  png_read_info(png, info);
+  if (png_get_bit_depth(png, info) > 8) png_error(png, "not an 8-bit PNG (16 bits per channel)");
+  decode.width = static_cast<int>(png_get_image_width(png, info));
+  decode.height = static_cast<int>(png_get_image_height(png, info));
+  if (static_cast<std::uint64_t>(decode.width) * static_cast<std::uint64_t>(decode.height) > kMaxPixels)
+    png_error(png, "image too large (over 2^28 pixels)");
+  // Widen whatever the file holds to RGBA8 as stored: palette and grey to RGB, transparency
+  // chunks to alpha, missing alpha = 255. No gamma or colour conversion is asked for.
+  const png_byte colour = png_get_color_type(png, info);
+  if (colour == PNG_COLOR_TYPE_PALETTE) png_set_palette_to_rgb(png);
+  if (colour == PNG_COLOR_TYPE_GRAY && png_get_bit_depth(png, info) < 8) png_set_expand_gray_1_2_4_to_8(png);
+  if (png_get_valid(png, info, PNG_INFO_tRNS)) png_set_tRNS_to_alpha(png);
+  if (colour == PNG_COLOR_TYPE_GRAY || colour == PNG_COLOR_TYPE_GRAY_ALPHA) png_set_gray_to_rgb(png);
+  png_set_filler(png, 0xff, PNG_FILLER_AFTER);
+  png_set_interlace_handling(png);
+  png_read_update_info(png, info);
+  const std::size_t stride = static_cast<std::size_t>(decode.width) * 4;
+  if (png_get_rowbytes(png, info) != stride) png_error(png, "unsupported PNG layout");
+  decode.rgba.resize(stride * static_cast<std::size_t>(decode.height));
+  decode.rows.resize(static_cast<std::size_t>(decode.height));
+  for (std::size_t y = 0; y < decode.rows.size(); ++y) decode.rows[y] = decode.rgba.data() + y * stride;
+  png_read_image(png, decode.rows.data());
+  png_read_end(png, end);
+  collectText(png, info, decode);
+  collectText(png, end, decode);
+}
+
+// Decodes a file whose chunk structure checkPngStructure accepted; errors name the file.
+Status decodePng(const std::string& path, const std::vector<std::uint8_t>& bytes, PngDecode& decode) {
+  decode.bytes = &bytes;
+  png_structp png = png_create_read_struct(PNG_LIBPNG_VER_STRING, &decode, onPngError, onPngWarning);
+  png_infop info = png ? png_create_info_struct(png) : nullptr;
+  png_infop end = png ? png_create_info_struct(png) : nullptr;
+  if (!png || !info || !end) {
+    png_destroy_read_struct(&png, &info, &end);
+    return Error{path + ": out of memory to decode the PNG"};
+  }
+  if (setjmp(png_jmpbuf(png))) {
+    png_destroy_read_struct(&png, &info, &end);
+    return Error{path + ": " + decode.error};
+  }
+  decodeInto(png, info, end, decode);
+  png_destroy_read_struct(&png, &info, &end);
+  return Ok{};
 }
 
 // Writes bytes to a temporary sibling and renames it over `path`.
@@ -134,40 +219,31 @@ Status writeHni(const std::string& path, const Image& image, const HniText& text
 Result<PngFile> readPng(const std::string& path) {
   std::error_code error;
   if (!std::filesystem::is_regular_file(path, error)) return Error{path + ": no such file"};
-  if (Status s = checkPngStructure(path); !s) return s.error();
-  OIIO::ImageSpec config;
-  config.attribute("oiio:UnassociatedAlpha", 1);
-  auto in = OIIO::ImageInput::open(path, &config);
-  if (!in) return Error{path + ": not a readable image: " + firstLine(OIIO::geterror())};
-  const OIIO::ImageSpec& spec = in->spec();
-  if (std::string(in->format_name()) != "png") return Error{path + ": not a PNG file"};
-  if (spec.format != OIIO::TypeDesc::UINT8) return Error{path + ": not an 8-bit PNG"};
-  if (spec.width <= 0 || spec.height <= 0 || spec.nchannels < 1 || spec.nchannels > 4)
-    return Error{path + ": unsupported PNG layout"};
-  PngFile file;
-  file.image = Image(spec.width, spec.height);
-  // Read the channels the file has, then widen to RGBA (grey -> RGB, missing alpha = 255).
-  std::vector<std::uint8_t> raw(static_cast<std::size_t>(spec.width) * static_cast<std::size_t>(spec.height) *
-                                static_cast<std::size_t>(spec.nchannels));
-  if (!in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::UINT8, raw.data()))
-    return Error{path + ": " + firstLine(in->geterror())};
-  const int n = spec.nchannels;
-  for (std::size_t i = 0; i < raw.size() / static_cast<std::size_t>(n); ++i) {
-    const std::uint8_t* s = raw.data() + i * static_cast<std::size_t>(n);
-    std::uint8_t* d = file.image.pixels.data() + i * 4;
-    const bool grey = n <= 2;
-    d[0] = s[0];
-    d[1] = grey ? s[0] : s[1];
-    d[2] = grey ? s[0] : s[2];
-    d[3] = n == 2 ? s[1] : (n == 4 ? s[3] : 255);
+  std::vector<std::uint8_t> bytes;
+  {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) return Error{path + ": cannot open (" + std::strerror(errno) + ")"};
+    bytes.assign(std::istreambuf_iterator<char>(in), {});
   }
-  file.text.name = spec.get_string_attribute(kName);
-  file.text.generator = spec.get_string_attribute(kGenerator);
-  file.text.units = spec.get_string_attribute(kUnits, "m");
-  std::istringstream origin(spec.get_string_attribute(kOrigin, "0 0 0"));
-  origin >> file.text.originM.x >> file.text.originM.y >> file.text.originM.z;
-  if (!origin) return Error{path + ": malformed nut:origin text chunk"};
-  file.fileBytes = std::filesystem::file_size(path, error);
+  if (Status s = checkPngStructure(path, bytes); !s) return s.error();
+  const auto decode = std::make_unique<PngDecode>();
+  if (Status s = decodePng(path, bytes, *decode); !s) return s.error();
+  PngFile file;
+  file.image.width = decode->width;
+  file.image.height = decode->height;
+  file.image.pixels = std::move(decode->rgba);
+  file.text.units = "m";
+  std::string origin = "0 0 0";
+  for (const auto& [key, value] : decode->text) {
+    if (key == kName) file.text.name = value;
+    if (key == kGenerator) file.text.generator = value;
+    if (key == kUnits) file.text.units = value;
+    if (key == kOrigin) origin = value;
+  }
+  std::istringstream originStream(origin);
+  originStream >> file.text.originM.x >> file.text.originM.y >> file.text.originM.z;
+  if (!originStream) return Error{path + ": malformed nut:origin text chunk"};
+  file.fileBytes = bytes.size();
   return file;
 }
 
