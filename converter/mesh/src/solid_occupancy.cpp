@@ -456,26 +456,37 @@ void Builder::trimCutCells(const LazyWinding& winding) {
         markCut(piece.p[0], piece.p[static_cast<std::size_t>(m)], piece.p[static_cast<std::size_t>(m + 1)]);
   }
   if (!any) return;
-  for (int z = 0; z < n[2]; ++z)
-    for (int y = 0; y < n[1]; ++y)
-      for (int x = 0; x < n[0]; ++x) {
-        const std::size_t id = index(x, y, z);
-        if (!cut[id]) continue;
-        for (int sample = 0; sample < 8; ++sample) {
-          dvec3 q;
-          const std::array<int, 3> c{x, y, z};
-          for (int ax = 0; ax < 3; ++ax) {
-            const auto& B = bounds[static_cast<std::size_t>(ax)];
-            const double l = B[static_cast<std::size_t>(c[static_cast<std::size_t>(ax)])], h = B[static_cast<std::size_t>(c[static_cast<std::size_t>(ax)] + 1)];
-            q[ax] = l + ((sample >> ax) & 1 ? 1.0 - kCornerInset : kCornerInset) * (h - l);
-          }
-          if (std::abs(winding(q + origin)) < kInside) {
-            shape[id] = -1;
-            ++stats.trimmedCells;
-            break;
+  // Each cut cell's samples are independent of every other cell's result, so the cells are
+  // shared among the threads; a cell is only ever emptied, by the thread that owns it.
+  std::vector<std::size_t> cutCells;
+  for (std::size_t id = 0; id < cut.size(); ++id)
+    if (cut[id]) cutCells.push_back(id);
+  std::atomic<long long> trimmed{0};
+  parallelFor(
+      cutCells.size(), 16, options.threads,
+      [&](std::size_t begin, std::size_t end) {
+        long long localTrimmed = 0;
+        for (std::size_t i = begin; i < end; ++i) {
+          const std::size_t id = cutCells[i];
+          const std::array<int, 3> c = cellAt(id);
+          for (int sample = 0; sample < 8; ++sample) {
+            dvec3 q;
+            for (int ax = 0; ax < 3; ++ax) {
+              const auto& B = bounds[static_cast<std::size_t>(ax)];
+              const double l = B[static_cast<std::size_t>(c[static_cast<std::size_t>(ax)])], h = B[static_cast<std::size_t>(c[static_cast<std::size_t>(ax)] + 1)];
+              q[ax] = l + ((sample >> ax) & 1 ? 1.0 - kCornerInset : kCornerInset) * (h - l);
+            }
+            if (std::abs(winding(q + origin)) < kInside) {
+              shape[id] = -1;
+              ++localTrimmed;
+              break;
+            }
           }
         }
-      }
+        trimmed += localTrimmed;
+      },
+      options.progress);
+  stats.trimmedCells += trimmed;
 }
 
 // Whether a face of a slope shown by wedges crosses a cell where fitWedges made no wedge.

@@ -66,7 +66,8 @@ struct SolidOptions {
   // The mesh is a closed surface (MeshCheck::closedSurface): lines of cells whose crossings
   // balance are counted; otherwise every cell asks the winding number.
   bool closedSurface = false;
-  // Called from the calling thread with the fraction of cells classified so far.
+  // Called from the calling thread with the fraction done of the pass over cells under way: the
+  // cells classified, then the cut cells trimmed (each pass, and each build of the grid, starts at 0).
   std::function<void(double)> progress;
 };
 
