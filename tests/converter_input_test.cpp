@@ -1,10 +1,11 @@
 // Mesh converter, first steps: the OBJ + MTL reader and its errors (file:line), objects and
 // materials, z-up; the mesh checks and orientation repair; the generalized winding number against
 // its exact sum; the solid grid on analytic meshes (a box, a box tilted by half a degree, an open
-// box, walls standing on a base plate, a gable roof of wedges, a thin sheet left to the
-// complementary mesh); the city manifest.
+// box, walls standing on a base plate, a gable roof of wedges, a thin sheet and a wall's fin left
+// to the complementary mesh); the city manifest.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -403,6 +404,48 @@ TEST(SolidGrid, AThinSheetGoesToTheComplementaryMesh) {
   ASSERT_TRUE(c.ok()) << c.error().message;
   EXPECT_NEAR(c->report.solid.complementAreaM2, 1.0, 1e-6);
   EXPECT_EQ(c->complement.triangles.size(), 2u);
+}
+
+TEST(SolidGrid, TheUncoveredPartOfAFaceGoesToTheMeshInFewPieces) {
+  // A box whose +x wall runs on as a fin 2 m past the box: the fin (6 of the wall's 36 m^2) has
+  // nothing behind it. A second box far off adds the planes y = 1, 2 and z = 10.5, 11.5, so the
+  // fin spans 3 x 3 cells; its part of each wall triangle must reach the mesh in one piece per
+  // rectangle of cells, not one per cell, with corners shared.
+  std::string obj = "v 0 0 0\nv 10 0 0\nv 0 3 0\nv 10 3 0\nv 0 0 10\nv 10 0 10\nv 0 3 10\nv 10 3 10\n";
+  obj += "v 10 0 12\nv 10 3 12\n";                     // 9, 10: the fin's far edge
+  obj += "f 1 5 7 3\nf 1 2 6 5\nf 3 7 8 4\nf 1 3 4 2\nf 5 6 8 7\n";  // -x, -y, +y, -z, +z
+  obj += "f 2 4 10 9\n";                                 // +x wall and fin: one quad, x = 10
+  // The far box, its faces renumbered after the first ten vertices.
+  std::istringstream lines(boxObj({20, 1, 10.5}, {21, 2, 11.5}));
+  for (std::string line; std::getline(lines, line);) {
+    if (line.rfind("f ", 0) != 0) {
+      obj += line;
+      obj += '\n';
+      continue;
+    }
+    std::istringstream corners(line.substr(2));
+    obj += 'f';
+    for (int v; corners >> v;) {
+      obj += ' ';
+      obj += std::to_string(v + 10);
+    }
+    obj += '\n';
+  }
+  auto c = convertText("fin", obj);
+  ASSERT_TRUE(c.ok()) << c.error().message;
+  EXPECT_EQ(c->report.solid.planes[1], 4);  // y = 0, 1, 2, 3
+  EXPECT_NEAR(c->report.solid.complementAreaM2, 6.0, 1e-6);
+  const Mesh& mesh = c->complement;
+  EXPECT_NEAR(mesh.area(), 6.0, 1e-6);
+  for (const auto& t : mesh.triangles)
+    for (std::uint32_t v : t) EXPECT_NEAR(mesh.positions[v].x + c->originM.x, 10.0, 1e-9);
+  // Each wall triangle's part of the fin is one rectangle of cells: at most 5 corners, 3 triangles.
+  EXPECT_LE(mesh.triangles.size(), 6u);
+  std::vector<glm::dvec3> sorted = mesh.positions;
+  std::sort(sorted.begin(), sorted.end(), [](const glm::dvec3& a, const glm::dvec3& b) {
+    return a.x != b.x ? a.x < b.x : a.y != b.y ? a.y < b.y : a.z < b.z;
+  });
+  EXPECT_EQ(std::adjacent_find(sorted.begin(), sorted.end()), sorted.end()) << "a corner stored twice";
 }
 
 TEST(City, ManifestRoundTripsAndRejectsPathsOutside) {

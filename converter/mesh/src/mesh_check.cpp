@@ -5,7 +5,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
-#include <cstring>
 #include <numeric>
 #include <unordered_map>
 
@@ -15,6 +14,7 @@
 #include <glm/geometric.hpp>
 
 #include "closed_surface.hpp"
+#include "position_hash.hpp"
 #include "union_find.hpp"
 
 namespace nut::converter {
@@ -29,19 +29,6 @@ using glm::dvec3;
 constexpr double kSliverAltitudeM = 1e-4;
 // ... and pieces whose volume is below this times area^1.5 (a closed cube has 0.068).
 constexpr double kOrientOpenPieceMinVolume = 0.01;
-
-struct PositionHash {
-  std::size_t operator()(const dvec3& p) const {
-    std::uint64_t h = 1469598103934665603ull;
-    for (int i = 0; i < 3; ++i) {
-      std::uint64_t bits;
-      const double v = p[i] == 0.0 ? 0.0 : p[i];  // -0 and +0 are one position
-      std::memcpy(&bits, &v, sizeof bits);
-      h = (h ^ bits) * 1099511628211ull;
-    }
-    return static_cast<std::size_t>(h ^ (h >> 29));
-  }
-};
 
 // Positions welded by exact equality: triangle corners as ids of distinct positions.
 struct Welded {

@@ -56,6 +56,48 @@ double polygonArea(const Polygon2& poly) {
 // on that side; wedges add their slope (fitWedges), quadric cells their curved face
 // (fitQuadrics). With `complement`, the pieces that are empty on both sides go there and the
 // surface statistics are counted.
+namespace {
+
+// Cells i0..i1 by j0..j1 of a face's plane.
+struct CellRectangle {
+  int i0, i1, j0, j1;
+};
+
+// Joins cells (i, j), sorted by i then j as the face loop finds them, into rectangles: runs of
+// consecutive j in one column, and a run continued by the same run in the next column.
+std::vector<CellRectangle> joinCells(const std::vector<std::array<int, 2>>& cells) {
+  std::vector<CellRectangle> runs;
+  for (const auto& [i, j] : cells) {
+    if (!runs.empty() && runs.back().i0 == i && runs.back().j1 + 1 == j)
+      ++runs.back().j1;
+    else
+      runs.push_back({i, i, j, j});
+  }
+  std::vector<CellRectangle> out;
+  std::vector<std::size_t> open;  // rectangles of out that the previous column's runs extended
+  for (std::size_t r = 0; r < runs.size();) {
+    const int column = runs[r].i0;
+    std::vector<std::size_t> extended;
+    for (; r < runs.size() && runs[r].i0 == column; ++r) {
+      const CellRectangle& run = runs[r];
+      const auto same = std::find_if(open.begin(), open.end(), [&](std::size_t o) {
+        return out[o].i1 + 1 == column && out[o].j0 == run.j0 && out[o].j1 == run.j1;
+      });
+      if (same != open.end()) {
+        out[*same].i1 = column;
+        extended.push_back(*same);
+      } else {
+        extended.push_back(out.size());
+        out.push_back(run);
+      }
+    }
+    open = std::move(extended);
+  }
+  return out;
+}
+
+}  // namespace
+
 std::vector<Builder::Share> Builder::computeShares(Mesh& complementOut, SolidStats& area) {
   // Faces are handled in chunks on all threads, each chunk into its own lists, which are then
   // joined in chunk order so that the result does not depend on the thread count.
@@ -116,8 +158,9 @@ std::vector<Builder::Share> Builder::computeShares(Mesh& complementOut, SolidSta
       // The face's own plane lifts clipped pieces back to 3D for the complementary mesh.
       const dvec3 normal = face.areaVector / face.area;
       const double d = glm::dot(normal, P0);
-      // Pieces the mesh must show; a face mostly left to the mesh goes there whole instead.
-      std::vector<std::pair<std::array<dvec3, 12>, int>> uncovered;
+      // Cells (i, j) whose piece the mesh must show; a face mostly left to the mesh goes there
+      // whole instead.
+      std::vector<std::array<int, 2>> uncovered;
       double uncoveredArea = 0;
       for (int i = i0; i <= i1; ++i) {
         // A column strip first, then its rows: two clips per cell instead of four.
@@ -200,7 +243,7 @@ std::vector<Builder::Share> Builder::computeShares(Mesh& complementOut, SolidSta
               out.nut += pieceArea;
               continue;
             }
-            uncovered.emplace_back(corners, piece.n);
+            uncovered.push_back({i, j});
             uncoveredArea += pieceArea;
             out.complementArea += pieceArea;
           } else {
@@ -211,8 +254,26 @@ std::vector<Builder::Share> Builder::computeShares(Mesh& complementOut, SolidSta
       if (2 * uncoveredArea > face.area) {
         const dvec3 tri3[3] = {P0, P1, P2};
         addComplementPolygon(tri3, 3, material);
-      } else {
-        for (const auto& [poly, count] : uncovered) addComplementPolygon(poly.data(), count, material);
+        continue;
+      }
+      // The uncovered cells joined into rectangles (runs along v, then equal runs of neighbouring
+      // columns), each clipped from the face once: one piece per cell would give the mesh more
+      // triangles than the face it replaces.
+      for (const CellRectangle& r : joinCells(uncovered)) {
+        Polygon2 piece = tri;
+        clipAxis(piece, 0, U[static_cast<std::size_t>(r.i0)], false);
+        clipAxis(piece, 0, U[static_cast<std::size_t>(r.i1 + 1)], true);
+        clipAxis(piece, 1, V[static_cast<std::size_t>(r.j0)], false);
+        clipAxis(piece, 1, V[static_cast<std::size_t>(r.j1 + 1)], true);
+        if (piece.n < 3) continue;
+        std::array<dvec3, 12> corners{};
+        for (int m = 0; m < piece.n; ++m) {
+          dvec3& q = corners[static_cast<std::size_t>(m)];
+          q[u] = piece.p[static_cast<std::size_t>(m)].x;
+          q[v] = piece.p[static_cast<std::size_t>(m)].y;
+          q[a] = (d - normal[u] * q[u] - normal[v] * q[v]) / normal[a];
+        }
+        addComplementPolygon(corners.data(), piece.n, material);
       }
     }
   });
@@ -229,6 +290,7 @@ std::vector<Builder::Share> Builder::computeShares(Mesh& complementOut, SolidSta
     area.complementAreaM2 += c.complementArea;
     area.hiddenAreaM2 += c.hidden;
   }
+  complement->weldPositions();
   std::sort(shares.begin(), shares.end(), [](const Share& x, const Share& y) {
     return x.cell != y.cell ? x.cell < y.cell : x.side != y.side ? x.side < y.side : x.material < y.material;
   });
