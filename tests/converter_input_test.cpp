@@ -265,6 +265,36 @@ TEST(WindingNumber, FastMatchesExactAndClassifiesABox) {
   EXPECT_NEAR(closed(glm::dvec3(5, 1.5, 1)), 0.0, 0.03);
 }
 
+TEST(WindingNumber, FastMatchesExactNextToTheSurface) {
+  // Where the converter asks: near faces (cell centres, cell corners 2 % inside a cut cell). On
+  // the box and on the box with one side missing: points on its faces moved by N(0, 5 cm) along
+  // each axis, where the far field is least accurate, and points 1 mm in front of and behind a
+  // face, where the triangles next to the point subtend nearly a hemisphere each (the product of
+  // a leaf's tangents turns past the negative real axis: a turn lost would be an error of 1).
+  auto obj = readObj(writeFile("winding_near.obj", boxObj({0, 0, 0}, {4, 3, 2})));
+  ASSERT_TRUE(obj.ok());
+  const Mesh& m = obj->objects[0];
+  std::vector<std::array<std::uint32_t, 3>> open(m.triangles.begin() + 2, m.triangles.end());
+  for (const auto& tris : {m.triangles, open}) {
+    const WindingNumber w(m.positions, tris);
+    std::mt19937 rng(11);
+    std::uniform_int_distribution<std::size_t> pick(0, tris.size() - 1);
+    std::uniform_real_distribution<double> unit(0.0, 1.0);
+    std::normal_distribution<double> offset(0.0, 0.05);
+    for (int i = 0; i < 400; ++i) {
+      const auto& t = tris[pick(rng)];
+      const glm::dvec3 a = m.positions[t[0]], b = m.positions[t[1]], c = m.positions[t[2]];
+      double u = unit(rng), v = unit(rng);
+      if (u + v > 1) u = 1 - u, v = 1 - v;
+      const glm::dvec3 onFace = a + u * (b - a) + v * (c - a);
+      const glm::dvec3 normal = glm::normalize(glm::cross(b - a, c - a));
+      for (const glm::dvec3& q : {onFace + glm::dvec3(offset(rng), offset(rng), offset(rng)), onFace + 0.001 * normal,
+                                  onFace - 0.001 * normal})
+        EXPECT_NEAR(w(q), w.exact(q), 0.01) << q.x << " " << q.y << " " << q.z;
+    }
+  }
+}
+
 TEST(SolidGrid, ABoxIsOneSolidCell) {
   auto c = convertText("box", boxObj({10, 20, 30}, {14, 23, 32}));
   ASSERT_TRUE(c.ok()) << c.error().message;
