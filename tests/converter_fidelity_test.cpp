@@ -83,10 +83,11 @@ INSTANTIATE_TEST_SUITE_P(Samples, SampleFidelity,
 // boundaries of its axis; the solid's face at the other boundary once took the ground plate's
 // colour (93.09 % in the worst view). zurich_gable.obj: a roof sheet overhanging its gables; lines
 // of cells crossing both pitches once counted the air under the overhang as inside, and the gable
-// showed that air's roof-coloured boxes (98.46 %).
+// showed that air's roof-coloured boxes (98.46 %); then the triangular ends of the wedges under
+// the pitches, each too small a conflict on its own, showed the roof's colour (99.50 %).
 INSTANTIATE_TEST_SUITE_P(Fixtures, SampleFidelity,
                          ::testing::Values(Case{"tests/data/zurich_house.obj", 99.0, false},
-                                           Case{"tests/data/zurich_gable.obj", 99.0, false}));
+                                           Case{"tests/data/zurich_gable.obj", 99.8, false}));
 
 // The external meshes are real models with open shells, tilted faces and non-axis-aligned parts:
 // their figures are printed (docs/CONVERTER.md) and held to a looser bar. (Zurich's 49 buildings

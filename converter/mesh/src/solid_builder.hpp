@@ -45,7 +45,8 @@ constexpr double kConflictShareForRebuild = 0.001;
 // A side of a cell whose material is not the cell's counts as a conflict when it is this share of
 // the cell's faces (a small trim on a big cell is not worth a boundary across the whole grid)...
 constexpr double kConflictShareOfCell = 0.15;
-// ...or this share of the mesh's surface, however big the cell (a gable end under a long pitch).
+// ...or this share of the mesh's surface, however big the cell (a gable end under a long pitch),
+// alone or summed over the conflicts one boundary would separate (the ends of a gable's wedges).
 constexpr double kConflictShareOfSurface = 0.005;
 // A line where coplanar faces of two materials meet gets a boundary when the strip it would
 // colour wrongly is at least this share of the surface (Builder::addMaterialEdges).

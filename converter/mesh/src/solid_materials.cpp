@@ -300,10 +300,17 @@ std::vector<Builder::Share> Builder::computeShares(Mesh& complementOut, SolidSta
 // A cell shows one material on all its faces. Where two of its faces carry different materials
 // with a real share each (a slab with a deck on top and a concrete ceiling below, a gable end
 // under a roof slope), a boundary is proposed that gives the smaller one a cell of its own: in
-// the middle for opposite faces, a little inside the smaller face otherwise.
+// the middle for opposite faces, a little inside the smaller face otherwise. Conflicts too small
+// alone are proposed where, summed by place, they reach the surface share together.
 std::array<std::vector<double>, 3> Builder::materialConflicts(const std::vector<Share>& shares, double& conflictArea) const {
   conflictArea = 0;
   std::array<std::vector<double>, 3> proposals;
+  // Conflicts too small on their own, by the place their boundary would go: a boundary that
+  // separates many of them at once (the ends of all the wedges along a gable) pays together.
+  struct Minor {
+    double at, area;
+  };
+  std::array<std::vector<Minor>, 3> minor;
   const double inset = std::max(1.5 * tol, 0.002);
   for (std::size_t i = 0; i < shares.size();) {
     std::size_t j = i;
@@ -332,16 +339,33 @@ std::array<std::vector<double>, 3> Builder::materialConflicts(const std::vector<
                          static_cast<int>(cell / (static_cast<std::size_t>(n[0]) * static_cast<std::size_t>(n[1])))};
     for (int side = 0; side < 6; ++side) {
       const double area = sideArea[static_cast<std::size_t>(side)];
-      if (side == best || (area < kConflictShareOfCell * total && area < kConflictShareOfSurface * stats.areaM2) ||
-          sideMaterial[static_cast<std::size_t>(side)] == sideMaterial[static_cast<std::size_t>(best)])
+      if (side == best || area <= 0 || sideMaterial[static_cast<std::size_t>(side)] == sideMaterial[static_cast<std::size_t>(best)])
         continue;
       const int a = side / 2;
       const auto& B = bounds[static_cast<std::size_t>(a)];
       const double lo = B[static_cast<std::size_t>(c[static_cast<std::size_t>(a)])], hi = B[static_cast<std::size_t>(c[static_cast<std::size_t>(a)] + 1)];
       if (hi - lo < 2 * inset) continue;
-      conflictArea += sideArea[static_cast<std::size_t>(side)];
-      if (best / 2 == a && best < 6) proposals[static_cast<std::size_t>(a)].push_back(0.5 * (lo + hi));
-      else proposals[static_cast<std::size_t>(a)].push_back(side % 2 ? hi - inset : lo + inset);
+      const double at = best / 2 == a && best < 6 ? 0.5 * (lo + hi) : side % 2 ? hi - inset : lo + inset;
+      if (area < kConflictShareOfCell * total && area < kConflictShareOfSurface * stats.areaM2) {
+        minor[static_cast<std::size_t>(a)].push_back({at, area});
+        continue;
+      }
+      conflictArea += area;
+      proposals[static_cast<std::size_t>(a)].push_back(at);
+    }
+  }
+  for (int a = 0; a < 3; ++a) {
+    auto& list = minor[static_cast<std::size_t>(a)];
+    std::sort(list.begin(), list.end(), [](const Minor& x, const Minor& y) { return x.at < y.at; });
+    for (std::size_t i = 0; i < list.size();) {
+      std::size_t j = i;
+      double sum = 0;
+      while (j < list.size() && list[j].at - list[i].at <= tol) sum += list[j++].area;
+      if (sum >= kConflictShareOfSurface * stats.areaM2) {
+        conflictArea += sum;
+        proposals[static_cast<std::size_t>(a)].push_back(list[i].at);
+      }
+      i = j;
     }
   }
   return proposals;
