@@ -8,9 +8,8 @@
 #include <png.h>
 #include <zlib.h>
 
-#include <csetjmp>
-
 #include <cerrno>
+#include <csetjmp>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>

@@ -14,8 +14,8 @@
 #include <glm/geometric.hpp>
 
 #include "closed_surface.hpp"
-#include "position_hash.hpp"
 #include "union_find.hpp"
+#include "weld.hpp"
 
 namespace nut::converter {
 
@@ -29,27 +29,6 @@ using glm::dvec3;
 constexpr double kSliverAltitudeM = 1e-4;
 // ... and pieces whose volume is below this times area^1.5 (a closed cube has 0.068).
 constexpr double kOrientOpenPieceMinVolume = 0.01;
-
-// Positions welded by exact equality: triangle corners as ids of distinct positions.
-struct Welded {
-  std::vector<dvec3> points;
-  std::vector<std::array<std::uint32_t, 3>> triangles;
-};
-
-Welded weld(const Mesh& mesh) {
-  Welded w;
-  std::unordered_map<dvec3, std::uint32_t, PositionHash> ids;
-  ids.reserve(mesh.positions.size());
-  std::vector<std::uint32_t> idOf(mesh.positions.size());
-  for (std::size_t v = 0; v < mesh.positions.size(); ++v) {
-    auto [it, inserted] = ids.try_emplace(mesh.positions[v], static_cast<std::uint32_t>(w.points.size()));
-    if (inserted) w.points.push_back(mesh.positions[v]);
-    idOf[v] = it->second;
-  }
-  w.triangles.reserve(mesh.triangles.size());
-  for (const auto& t : mesh.triangles) w.triangles.push_back({idOf[t[0]], idOf[t[1]], idOf[t[2]]});
-  return w;
-}
 
 // Whether b is a cyclic rotation of a (same orientation) or of a reversed (flipped).
 enum class Turn { Same, Flipped, Other };
@@ -112,7 +91,7 @@ std::string MeshCheck::summary() const {
 MeshCheck checkAndRepair(Mesh& mesh) {
   MeshCheck check;
   check.triangles = mesh.triangles.size();
-  Welded w = weld(mesh);
+  Welded w = weld(mesh.positions, mesh.triangles);
 
   // Degenerate faces go (exact predicate); slivers and duplicates are counted.
   {

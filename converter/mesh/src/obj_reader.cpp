@@ -12,12 +12,9 @@
 #include <limits>
 #include <map>
 #include <string_view>
-#include <unordered_map>
 
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>
-
-#include "position_hash.hpp"
 
 namespace nut::converter {
 
@@ -179,18 +176,6 @@ double Mesh::area() const {
   for (const auto& t : triangles)
     sum += 0.5 * glm::length(glm::cross(positions[t[1]] - positions[t[0]], positions[t[2]] - positions[t[0]]));
   return sum;
-}
-
-void Mesh::weldPositions() {
-  std::unordered_map<glm::dvec3, std::uint32_t, PositionHash> ids;
-  std::vector<glm::dvec3> welded;
-  for (auto& t : triangles)
-    for (std::uint32_t& v : t) {
-      const auto [it, inserted] = ids.try_emplace(positions[v], static_cast<std::uint32_t>(welded.size()));
-      if (inserted) welded.push_back(positions[v]);
-      v = it->second;
-    }
-  positions = std::move(welded);
 }
 
 Result<ObjContents> readObj(const std::string& path, const ObjReadOptions& options) {

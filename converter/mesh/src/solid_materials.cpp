@@ -14,6 +14,7 @@
 
 #include "parallel.hpp"
 #include "solid_builder.hpp"
+#include "weld.hpp"
 
 namespace nut::converter::solid {
 
@@ -155,9 +156,20 @@ std::vector<Builder::Share> Builder::computeShares(Mesh& complementOut, SolidSta
       const auto& V = bounds[static_cast<std::size_t>(v)];
       const int i0 = cellOf(U, std::min({P0[u], P1[u], P2[u]})), i1 = cellOf(U, std::max({P0[u], P1[u], P2[u]}));
       const int j0 = cellOf(V, std::min({P0[v], P1[v], P2[v]})), j1 = cellOf(V, std::max({P0[v], P1[v], P2[v]}));
-      // The face's own plane lifts clipped pieces back to 3D for the complementary mesh.
+      // The face's own plane lifts clipped pieces back to 3D (where along a the surface really
+      // is, and the complementary mesh's corners).
       const dvec3 normal = face.areaVector / face.area;
       const double d = glm::dot(normal, P0);
+      const auto onFacePlane = [&](const Polygon2& piece) {
+        std::array<dvec3, 12> corners{};
+        for (int m = 0; m < piece.n; ++m) {
+          dvec3& q = corners[static_cast<std::size_t>(m)];
+          q[u] = piece.p[static_cast<std::size_t>(m)].x;
+          q[v] = piece.p[static_cast<std::size_t>(m)].y;
+          q[a] = (d - normal[u] * q[u] - normal[v] * q[v]) / normal[a];
+        }
+        return corners;
+      };
       // Cells (i, j) whose piece the mesh must show; a face mostly left to the mesh goes there
       // whole instead.
       std::vector<std::array<int, 2>> uncovered;
@@ -180,15 +192,11 @@ std::vector<Builder::Share> Builder::computeShares(Mesh& complementOut, SolidSta
           const double pieceArea = polygonArea(piece) * toTrue;
           if (pieceArea <= kMinPieceAreaM2) continue;  // a clipping sliver, not a piece of surface
           // The piece's corners on its own plane: where along a the surface really is.
-          std::array<dvec3, 12> corners{};
+          const std::array<dvec3, 12> corners = onFacePlane(piece);
           double surfaceLo = std::numeric_limits<double>::infinity(), surfaceHi = -surfaceLo;
           for (int m = 0; m < piece.n; ++m) {
-            dvec3& q = corners[static_cast<std::size_t>(m)];
-            q[u] = piece.p[static_cast<std::size_t>(m)].x;
-            q[v] = piece.p[static_cast<std::size_t>(m)].y;
-            q[a] = (d - normal[u] * q[u] - normal[v] * q[v]) / normal[a];
-            surfaceLo = std::min(surfaceLo, q[a]);
-            surfaceHi = std::max(surfaceHi, q[a]);
+            surfaceLo = std::min(surfaceLo, corners[static_cast<std::size_t>(m)][a]);
+            surfaceHi = std::max(surfaceHi, corners[static_cast<std::size_t>(m)][a]);
           }
           // The cell faces at boundary kk under the piece: whether the cells below and above are
           // solid there. A cell showing a quarter-round sub-block covers the piece only where S
@@ -265,15 +273,7 @@ std::vector<Builder::Share> Builder::computeShares(Mesh& complementOut, SolidSta
         clipAxis(piece, 0, U[static_cast<std::size_t>(r.i1 + 1)], true);
         clipAxis(piece, 1, V[static_cast<std::size_t>(r.j0)], false);
         clipAxis(piece, 1, V[static_cast<std::size_t>(r.j1 + 1)], true);
-        if (piece.n < 3) continue;
-        std::array<dvec3, 12> corners{};
-        for (int m = 0; m < piece.n; ++m) {
-          dvec3& q = corners[static_cast<std::size_t>(m)];
-          q[u] = piece.p[static_cast<std::size_t>(m)].x;
-          q[v] = piece.p[static_cast<std::size_t>(m)].y;
-          q[a] = (d - normal[u] * q[u] - normal[v] * q[v]) / normal[a];
-        }
-        addComplementPolygon(corners.data(), piece.n, material);
+        if (piece.n >= 3) addComplementPolygon(onFacePlane(piece).data(), piece.n, material);
       }
     }
   });
@@ -290,7 +290,10 @@ std::vector<Builder::Share> Builder::computeShares(Mesh& complementOut, SolidSta
     area.complementAreaM2 += c.complementArea;
     area.hiddenAreaM2 += c.hidden;
   }
-  complement->weldPositions();
+  // Pieces of neighbouring cells and faces repeat their corners: each is stored once.
+  Welded welded = weld(complement->positions, complement->triangles);
+  complement->positions = std::move(welded.points);
+  complement->triangles = std::move(welded.triangles);
   std::sort(shares.begin(), shares.end(), [](const Share& x, const Share& y) {
     return x.cell != y.cell ? x.cell < y.cell : x.side != y.side ? x.side < y.side : x.material < y.material;
   });

@@ -38,9 +38,6 @@ struct Mesh {
   WorldBox bounds() const;
   // Sum of triangle areas, m^2.
   double area() const;
-  // Makes exactly equal positions one (pieces cut from faces repeat their corners) and drops
-  // positions no triangle uses; triangles and their order stay.
-  void weldPositions();
 };
 
 struct ObjReadOptions {
