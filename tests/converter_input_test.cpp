@@ -9,11 +9,13 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <numbers>
 #include <random>
 #include <sstream>
 #include <string>
 #include <utility>
+#include <vector>
 
 #include <glm/geometric.hpp>
 
@@ -232,6 +234,38 @@ TEST(MeshCheck, FindsOpenEdgesNonManifoldEdgesAndFlippedFaces) {
   EXPECT_TRUE(check.closed());
   const WindingNumber w(box.positions, box.triangles);
   EXPECT_NEAR(w.exact(glm::dvec3(0.5)), 1.0, 1e-9);
+}
+
+// Walls and a roof without a floor, every face turned inwards: an open piece, so its volume does
+// not say which way it faces, but the winding number on either side of its faces does (-1 and 0
+// about a shell facing in). All ten triangles are turned out and the conversion is a solid box;
+// left facing in, the inside would have w = -1 and the grid would be empty. The same shell facing
+// out is left as it is.
+TEST(MeshCheck, TurnsAnOpenShellFacingInwardsOut) {
+  std::string outwards = boxObj({0, 0, 0}, {4, 3, 2});
+  outwards.erase(outwards.find("f 1 2 6 5\n"), 10);  // the floor
+  std::string inwards;
+  std::istringstream lines(outwards);
+  for (std::string line; std::getline(lines, line);) {
+    if (line.rfind("f ", 0) == 0) {
+      std::istringstream corners(line.substr(2));
+      std::vector<std::string> c{std::istream_iterator<std::string>(corners), {}};
+      line = "f " + c[3] + " " + c[2] + " " + c[1] + " " + c[0];
+    }
+    inwards += line;
+    inwards += '\n';
+  }
+  for (const bool facingIn : {false, true}) {
+    auto obj = readObj(writeFile(facingIn ? "shell_in.obj" : "shell_out.obj", facingIn ? inwards : outwards));
+    ASSERT_TRUE(obj.ok());
+    Mesh mesh = obj->objects[0];
+    const MeshCheck check = checkAndRepair(mesh);
+    EXPECT_EQ(check.flippedTriangles, facingIn ? 10u : 0u);
+    EXPECT_GT(WindingNumber(mesh.positions, mesh.triangles).exact(glm::dvec3(2, 1.5, 1)), 0.5);
+    auto c = convertText(facingIn ? "shell_in" : "shell_out", facingIn ? inwards : outwards);
+    ASSERT_TRUE(c.ok()) << c.error().message;
+    EXPECT_EQ(c->report.solid.solidCells, 1) << (facingIn ? "facing in" : "facing out");
+  }
 }
 
 TEST(MeshCheck, RemovesDegenerateFaces) {

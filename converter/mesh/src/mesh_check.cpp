@@ -1,6 +1,7 @@
 // Mesh checks and orientation repair. This is one of the two translation units that include CGAL
 // (its headers cost about 25 s and 2 GB to compile, docs/CONVERTER.md).
 #include <converter/mesh_check.hpp>
+#include <converter/winding.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -27,8 +28,10 @@ using glm::dvec3;
 
 // Altitude below which a triangle counts as a sliver (it keeps its area, but its normal is noisy).
 constexpr double kSliverAltitudeM = 1e-4;
-// ... and pieces whose volume is below this times area^1.5 (a closed cube has 0.068).
-constexpr double kOrientOpenPieceMinVolume = 0.01;
+// An open piece's side is judged by the winding number this far in front of and behind its
+// largest faces (a share of the face's size, at most 1 cm), at most this many faces per piece.
+constexpr double kSideSampleShare = 0.01, kSideSampleMaxM = 0.01;
+constexpr std::size_t kSideSamplesPerPiece = 16;
 
 // Whether b is a cyclic rotation of a (same orientation) or of a reversed (flipped).
 enum class Turn { Same, Flipped, Other };
@@ -223,12 +226,46 @@ MeshCheck checkAndRepair(Mesh& mesh) {
   // by (a roof tray between parapets has a negative volume and is right), so it keeps the
   // orientation most of its area came with.
   std::vector<std::uint8_t> turnedOut(w.triangles.size(), 0);
+  const auto turnOut = [&](std::size_t f) {
+    apply(f);
+    flipped[f] ^= 1;
+    turnedOut[f] ^= 1;
+  };
   for (std::size_t f = 0; f < w.triangles.size(); ++f) {
     const Piece& p = info[pieceIndex[root[f]]];
-    if (p.open ? 2 * p.turnedArea > p.area : p.volume < 0) {
-      apply(f);
-      flipped[f] ^= 1;
-      turnedOut[f] = 1;
+    if (p.open ? 2 * p.turnedArea > p.area : p.volume < 0) turnOut(f);
+  }
+  // The rest of the mesh gives an open piece an inside: the winding number just in front of a
+  // face and just behind it is about (0, 1) where the face looks out of the solid, and about
+  // (-1, 0) where the piece (or the whole mesh: walls without a floor, all facing in) looks in.
+  // A piece whose samples sum below zero is turned, so that w >= 1/2 is inside everywhere; the
+  // occupancy step relies on the sign, since outside an open mesh seen through its missing side
+  // w reaches -1/2 (in front of a row house's roof, its party wall missing).
+  std::vector<std::vector<std::uint32_t>> openFaces(info.size());
+  for (std::size_t f = 0; f < w.triangles.size(); ++f)
+    if (info[pieceIndex[root[f]]].open) openFaces[pieceIndex[root[f]]].push_back(static_cast<std::uint32_t>(f));
+  if (std::any_of(openFaces.begin(), openFaces.end(), [](const auto& faces) { return !faces.empty(); })) {
+    const WindingNumber winding(w.points, w.triangles);
+    const auto areaVector = [&](std::uint32_t f) {
+      const auto& t = w.triangles[f];
+      return 0.5 * glm::cross(w.points[t[1]] - w.points[t[0]], w.points[t[2]] - w.points[t[0]]);
+    };
+    for (std::vector<std::uint32_t>& faces : openFaces) {
+      if (faces.empty()) continue;
+      const std::size_t samples = std::min(faces.size(), kSideSamplesPerPiece);
+      std::partial_sort(faces.begin(), faces.begin() + static_cast<std::ptrdiff_t>(samples), faces.end(),
+                        [&](std::uint32_t a, std::uint32_t b) { return glm::length(areaVector(a)) > glm::length(areaVector(b)); });
+      double sum = 0;
+      for (std::size_t i = 0; i < samples; ++i) {
+        const auto& t = w.triangles[faces[i]];
+        const dvec3 centroid = (w.points[t[0]] + w.points[t[1]] + w.points[t[2]]) / 3.0;
+        const dvec3 av = areaVector(faces[i]);
+        const double area = glm::length(av);
+        const dvec3 offset = std::min(kSideSampleShare * std::sqrt(area), kSideSampleMaxM) * av / area;
+        sum += area * (winding(centroid + offset) + winding(centroid - offset));
+      }
+      if (sum < 0)
+        for (std::uint32_t f : faces) turnOut(f);
     }
   }
   check.flippedTriangles = static_cast<std::size_t>(std::count(flipped.begin(), flipped.end(), 1));

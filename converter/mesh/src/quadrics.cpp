@@ -300,7 +300,7 @@ bool Builder::fitQuadrics(const LazyWinding& winding) {
         x[e] = q.octant() ? axisE + q.eSign * share * (eb - ea) : 0.5 * (E[static_cast<std::size_t>(layer)] + E[static_cast<std::size_t>(layer + 1)]);
         x[u] = axisU + q.quadrant[0] * share * (ub - ua);
         x[v] = axisV + q.quadrant[1] * share * (vb - va);
-        in[static_cast<std::size_t>(h)] = std::abs(winding(x + origin)) >= kInside;
+        in[static_cast<std::size_t>(h)] = winding(x + origin) >= kInside;
       }
       if (!in[0] && !in[1]) ok = false;  // the piece is missing from the solid here: the mesh must show it
       q.layers.push_back(in[0] && in[1] ? std::int8_t{0} : static_cast<std::int8_t>(makeSolid(in[0] ? convex : concave, orientation).index));
@@ -383,7 +383,7 @@ bool Builder::subBlockFits(int piece, const LazyWinding& winding) const {
           const double away = q.planar ? std::abs(q.rho(x) - 1) / q.rhoPerMetre() : std::abs(q.rho(x) - 1) * smallest;
           if (away < margin) continue;
           const std::int8_t layer = q.layers[q.layerOf(k)];
-          if ((std::abs(winding(x + origin)) >= kInside) != solidInPiece(q, layer, x)) return false;
+          if ((winding(x + origin) >= kInside) != solidInPiece(q, layer, x)) return false;
         }
   return true;
 }

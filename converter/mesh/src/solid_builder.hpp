@@ -33,7 +33,8 @@ using glm::dvec3;
 constexpr int kU[3] = {1, 2, 0};
 constexpr int kV[3] = {2, 0, 1};
 
-// |w| at or above this is inside; between the ambiguity bounds the cell is sampled again.
+// w at or above this is inside (signed: the mesh check turned the mesh outwards, and outside an
+// open mesh w can reach -1/2); between the ambiguity bounds the cell is sampled again.
 constexpr double kInside = 0.5;
 constexpr double kAmbiguousLow = 0.3, kAmbiguousHigh = 0.7;
 // Rounds of slope closure, and how many boundaries they may add per axis.

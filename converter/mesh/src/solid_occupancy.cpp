@@ -93,7 +93,7 @@ void Builder::classify(const LazyWinding& winding) {
 
   std::atomic<long long> evaluations{0}, ambiguous{0}, windingColumns{0};
   const auto inside = [&](const dvec3& q, const dvec3& half, bool& wasAmbiguous) {
-    const double w = std::abs(winding(q + origin));
+    const double w = winding(q + origin);
     if (w < kAmbiguousLow || w > kAmbiguousHigh) return w >= kInside;
     // On or next to a surface: four samples a quarter cell away across the column.
     wasAmbiguous = true;
@@ -102,7 +102,7 @@ void Builder::classify(const LazyWinding& winding) {
       dvec3 o = q;
       o[b] += (d & 1 ? 0.5 : -0.5) * half[b];
       o[c] += (d & 2 ? 0.5 : -0.5) * half[c];
-      sum += std::abs(winding(o + origin));
+      sum += winding(o + origin);
     }
     return sum / 5.0 >= kInside;
   };
@@ -294,7 +294,7 @@ bool Builder::fitWedges(const LazyWinding& winding) {
           q[e] = 0.5 * (ea + eb);
           q[u] = (cu + ua + ub) / 3.0;
           q[v] = (cv + vlo + vhi) / 3.0;
-          in[static_cast<std::size_t>(h)] = std::abs(winding(q + origin)) >= kInside;
+          in[static_cast<std::size_t>(h)] = winding(q + origin) >= kInside;
         }
         std::array<int, 3> cell{};
         cell[static_cast<std::size_t>(e)] = k;
@@ -476,7 +476,7 @@ void Builder::trimCutCells(const LazyWinding& winding) {
               const double l = B[static_cast<std::size_t>(c[static_cast<std::size_t>(ax)])], h = B[static_cast<std::size_t>(c[static_cast<std::size_t>(ax)] + 1)];
               q[ax] = l + ((sample >> ax) & 1 ? 1.0 - kCornerInset : kCornerInset) * (h - l);
             }
-            if (std::abs(winding(q + origin)) < kInside) {
+            if (winding(q + origin) < kInside) {
               shape[id] = -1;
               ++localTrimmed;
               break;

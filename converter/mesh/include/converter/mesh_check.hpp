@@ -38,7 +38,8 @@ struct MeshCheck {
 
 // Checks `mesh` and repairs it in place: removes degenerate triangles, orients every connected
 // piece consistently, and turns closed pieces outwards (positive signed volume); an open piece
-// keeps the orientation most of its area had. Positions and materials are kept. Then decides
+// keeps the orientation most of its area had unless the winding number of the whole mesh on
+// either side of its faces says it faces into the solid. Positions and materials are kept. Then decides
 // whether the repaired mesh is a closed surface.
 MeshCheck checkAndRepair(Mesh& mesh);
 
