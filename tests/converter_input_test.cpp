@@ -63,6 +63,26 @@ std::string boxObj(glm::dvec3 lo, glm::dvec3 hi, double rotateDeg = 0, const std
   return obj;
 }
 
+// The OBJ text with every face's corners in reverse order (every face turned over).
+std::string reversedFaces(const std::string& obj) {
+  std::string out;
+  std::istringstream lines(obj);
+  for (std::string line; std::getline(lines, line);) {
+    if (line.rfind("f ", 0) == 0) {
+      std::istringstream corners(line.substr(2));
+      const std::vector<std::string> c{std::istream_iterator<std::string>(corners), {}};
+      line = "f";
+      for (auto it = c.rbegin(); it != c.rend(); ++it) {
+        line += ' ';
+        line += *it;
+      }
+    }
+    out += line;
+    out += '\n';
+  }
+  return out;
+}
+
 // A conversion of OBJ text.
 Result<Conversion> convertText(const std::string& name, const std::string& text, const ConvertOptions& options = {}) {
   auto obj = readObj(writeFile(name, text));
@@ -244,17 +264,7 @@ TEST(MeshCheck, FindsOpenEdgesNonManifoldEdgesAndFlippedFaces) {
 TEST(MeshCheck, TurnsAnOpenShellFacingInwardsOut) {
   std::string outwards = boxObj({0, 0, 0}, {4, 3, 2});
   outwards.erase(outwards.find("f 1 2 6 5\n"), 10);  // the floor
-  std::string inwards;
-  std::istringstream lines(outwards);
-  for (std::string line; std::getline(lines, line);) {
-    if (line.rfind("f ", 0) == 0) {
-      std::istringstream corners(line.substr(2));
-      std::vector<std::string> c{std::istream_iterator<std::string>(corners), {}};
-      line = "f " + c[3] + " " + c[2] + " " + c[1] + " " + c[0];
-    }
-    inwards += line;
-    inwards += '\n';
-  }
+  const std::string inwards = reversedFaces(outwards);
   for (const bool facingIn : {false, true}) {
     auto obj = readObj(writeFile(facingIn ? "shell_in.obj" : "shell_out.obj", facingIn ? inwards : outwards));
     ASSERT_TRUE(obj.ok());
@@ -265,6 +275,25 @@ TEST(MeshCheck, TurnsAnOpenShellFacingInwardsOut) {
     auto c = convertText(facingIn ? "shell_in" : "shell_out", facingIn ? inwards : outwards);
     ASSERT_TRUE(c.ok()) << c.error().message;
     EXPECT_EQ(c->report.solid.solidCells, 1) << (facingIn ? "facing in" : "facing out");
+  }
+}
+
+// A box whose top is two quads meeting the front and back edges at T-junctions: one open piece
+// (those edges are used once each) but a closed surface. Turned inside out, its volume says so
+// and the whole is turned back, for the occupancy step takes w >= 1/2 as inside.
+TEST(MeshCheck, TurnsAClosedSurfaceWithTJunctionsInsideOutBack) {
+  std::string box = boxObj({0, 0, 0}, {2, 1, 1});
+  box.replace(box.find("f 3 7 8 4\n"), 10, "f 3 7 10 9\nf 9 10 8 4\n");
+  box.insert(box.find("f "), "v 1 1 0\nv 1 1 1\n");
+  for (const bool insideOut : {false, true}) {
+    auto obj = readObj(writeFile("tbox.obj", insideOut ? reversedFaces(box) : box));
+    ASSERT_TRUE(obj.ok());
+    Mesh mesh = obj->objects[0];
+    const MeshCheck check = checkAndRepair(mesh);
+    EXPECT_FALSE(check.closed());
+    EXPECT_TRUE(check.closedSurface);
+    EXPECT_EQ(check.flippedTriangles, insideOut ? 14u : 0u);
+    EXPECT_NEAR(WindingNumber(mesh.positions, mesh.triangles).exact(glm::dvec3(1, 0.5, 0.5)), 1.0, 1e-9);
   }
 }
 

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdint>
 #include <numeric>
+#include <optional>
 #include <unordered_map>
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
@@ -29,9 +30,11 @@ using glm::dvec3;
 // Altitude below which a triangle counts as a sliver (it keeps its area, but its normal is noisy).
 constexpr double kSliverAltitudeM = 1e-4;
 // An open piece's side is judged by the winding number this far in front of and behind its
-// largest faces (a share of the face's size, at most 1 cm), at most this many faces per piece.
+// largest faces (a share of the face's size, at most 1 cm), at most this many faces per piece,
+// for pieces holding at least this share of the mesh's area.
 constexpr double kSideSampleShare = 0.01, kSideSampleMaxM = 0.01;
 constexpr std::size_t kSideSamplesPerPiece = 16;
+constexpr double kSidePieceMinShare = 0.001;
 
 // Whether b is a cyclic rotation of a (same orientation) or of a reversed (flipped).
 enum class Turn { Same, Flipped, Other };
@@ -72,6 +75,44 @@ void forEachEdge(const std::vector<EdgeUse>& uses, F&& f) {
     f(i, j);
     i = j;
   }
+}
+
+// Which open pieces face into the solid the rest of the mesh encloses. The winding number just
+// in front of a face and just behind it is about (0, 1) where the face looks out of the solid and
+// about (-1, 0) where it looks in (a piece turned inwards, or the whole mesh: walls and a roof
+// without a floor, all facing in); a piece whose samples sum below zero faces in. `openPieces`
+// holds each open piece's faces; small pieces are left as they are.
+std::vector<std::uint8_t> piecesFacingIn(const Welded& w, std::vector<std::vector<std::uint32_t>> openPieces) {
+  const auto areaVector = [&](std::uint32_t f) {
+    const auto& t = w.triangles[f];
+    return 0.5 * glm::cross(w.points[t[1]] - w.points[t[0]], w.points[t[2]] - w.points[t[0]]);
+  };
+  const auto area = [&](std::uint32_t f) { return glm::length(areaVector(f)); };
+  double totalArea = 0;
+  for (std::uint32_t f = 0; f < w.triangles.size(); ++f) totalArea += area(f);
+  std::vector<std::uint8_t> facingIn(openPieces.size(), 0);
+  std::optional<WindingNumber> winding;  // built only if some piece is large enough to ask
+  for (std::size_t p = 0; p < openPieces.size(); ++p) {
+    std::vector<std::uint32_t>& faces = openPieces[p];
+    double pieceArea = 0;
+    for (std::uint32_t f : faces) pieceArea += area(f);
+    if (faces.empty() || pieceArea < kSidePieceMinShare * totalArea) continue;
+    if (!winding) winding.emplace(w.points, w.triangles);
+    const std::size_t samples = std::min(faces.size(), kSideSamplesPerPiece);
+    std::partial_sort(faces.begin(), faces.begin() + static_cast<std::ptrdiff_t>(samples), faces.end(),
+                      [&](std::uint32_t a, std::uint32_t b) { return area(a) > area(b); });
+    double sum = 0;
+    for (std::size_t i = 0; i < samples; ++i) {
+      const auto& t = w.triangles[faces[i]];
+      const dvec3 centroid = (w.points[t[0]] + w.points[t[1]] + w.points[t[2]]) / 3.0;
+      const dvec3 av = areaVector(faces[i]);
+      const double a = glm::length(av);
+      const dvec3 offset = std::min(kSideSampleShare * std::sqrt(a), kSideSampleMaxM) * av / a;
+      sum += a * ((*winding)(centroid + offset) + (*winding)(centroid - offset));
+    }
+    facingIn[p] = sum < 0;
+  }
+  return facingIn;
 }
 
 }  // namespace
@@ -224,7 +265,7 @@ MeshCheck checkAndRepair(Mesh& mesh) {
   }
   // A closed piece faces outwards when its volume is positive. An open one has no inside to go
   // by (a roof tray between parapets has a negative volume and is right), so it keeps the
-  // orientation most of its area came with.
+  // orientation most of its area came with, until the whole mesh says otherwise (below).
   std::vector<std::uint8_t> turnedOut(w.triangles.size(), 0);
   const auto turnOut = [&](std::size_t f) {
     apply(f);
@@ -235,50 +276,42 @@ MeshCheck checkAndRepair(Mesh& mesh) {
     const Piece& p = info[pieceIndex[root[f]]];
     if (p.open ? 2 * p.turnedArea > p.area : p.volume < 0) turnOut(f);
   }
-  // The rest of the mesh gives an open piece an inside: the winding number just in front of a
-  // face and just behind it is about (0, 1) where the face looks out of the solid, and about
-  // (-1, 0) where the piece (or the whole mesh: walls without a floor, all facing in) looks in.
-  // A piece whose samples sum below zero is turned, so that w >= 1/2 is inside everywhere; the
-  // occupancy step relies on the sign, since outside an open mesh seen through its missing side
-  // w reaches -1/2 (in front of a row house's roof, its party wall missing).
-  std::vector<std::vector<std::uint32_t>> openFaces(info.size());
-  for (std::size_t f = 0; f < w.triangles.size(); ++f)
-    if (info[pieceIndex[root[f]]].open) openFaces[pieceIndex[root[f]]].push_back(static_cast<std::uint32_t>(f));
-  if (std::any_of(openFaces.begin(), openFaces.end(), [](const auto& faces) { return !faces.empty(); })) {
-    const WindingNumber winding(w.points, w.triangles);
-    const auto areaVector = [&](std::uint32_t f) {
-      const auto& t = w.triangles[f];
-      return 0.5 * glm::cross(w.points[t[1]] - w.points[t[0]], w.points[t[2]] - w.points[t[0]]);
-    };
-    for (std::vector<std::uint32_t>& faces : openFaces) {
-      if (faces.empty()) continue;
-      const std::size_t samples = std::min(faces.size(), kSideSamplesPerPiece);
-      std::partial_sort(faces.begin(), faces.begin() + static_cast<std::ptrdiff_t>(samples), faces.end(),
-                        [&](std::uint32_t a, std::uint32_t b) { return glm::length(areaVector(a)) > glm::length(areaVector(b)); });
-      double sum = 0;
-      for (std::size_t i = 0; i < samples; ++i) {
-        const auto& t = w.triangles[faces[i]];
-        const dvec3 centroid = (w.points[t[0]] + w.points[t[1]] + w.points[t[2]]) / 3.0;
-        const dvec3 av = areaVector(faces[i]);
-        const double area = glm::length(av);
-        const dvec3 offset = std::min(kSideSampleShare * std::sqrt(area), kSideSampleMaxM) * av / area;
-        sum += area * (winding(centroid + offset) + winding(centroid - offset));
-      }
-      if (sum < 0)
-        for (std::uint32_t f : faces) turnOut(f);
+
+  // Closed surface: what the repaired faces leave uncancelled on an edge cancels along its line.
+  const auto isClosedSurface = [&] {
+    std::vector<UncancelledEdge> uncancelled;
+    forEachEdge(uses, [&](std::size_t i, std::size_t j) {
+      int weight = 0;
+      for (std::size_t k = i; k < j; ++k) weight += uses[k].forward != (turnedOut[uses[k].face] != 0) ? 1 : -1;
+      if (weight != 0) uncancelled.push_back({w.points[uses[i].key >> 32], w.points[uses[i].key & 0xffffffffu], weight});
+    });
+    return cancelAlongLines(uncancelled);
+  };
+  check.closedSurface = isClosedSurface();
+
+  // Inside must be w >= 1/2 everywhere: the occupancy step keeps the sign, since outside an open
+  // mesh seen through its missing side w reaches -1/2 (in front of a roof whose walls behind it
+  // are missing). A closed surface agrees with itself along every line, so its volume says which
+  // way the whole faces; an open mesh is asked piece by piece.
+  if (check.closedSurface) {
+    const dvec3 centre = w.points.empty() ? dvec3(0.0) : w.points.front();
+    double volume = 0;
+    for (const auto& t : w.triangles)
+      volume += glm::dot(w.points[t[0]] - centre, glm::cross(w.points[t[1]] - centre, w.points[t[2]] - centre));
+    if (volume < 0)
+      for (std::size_t f = 0; f < w.triangles.size(); ++f) turnOut(f);
+  } else {
+    std::vector<std::vector<std::uint32_t>> openPieces(info.size());
+    for (std::size_t f = 0; f < w.triangles.size(); ++f)
+      if (info[pieceIndex[root[f]]].open) openPieces[pieceIndex[root[f]]].push_back(static_cast<std::uint32_t>(f));
+    const std::vector<std::uint8_t> facingIn = piecesFacingIn(w, std::move(openPieces));
+    if (std::find(facingIn.begin(), facingIn.end(), 1) != facingIn.end()) {
+      for (std::size_t f = 0; f < w.triangles.size(); ++f)
+        if (facingIn[pieceIndex[root[f]]]) turnOut(f);
+      check.closedSurface = isClosedSurface();  // pieces facing each other's way may now close it
     }
   }
   check.flippedTriangles = static_cast<std::size_t>(std::count(flipped.begin(), flipped.end(), 1));
-
-  // Closed surface: what the repaired faces leave uncancelled on an edge cancels along its line.
-  for (EdgeUse& use : uses) use.forward = use.forward != (turnedOut[use.face] != 0);
-  std::vector<UncancelledEdge> uncancelled;
-  forEachEdge(uses, [&](std::size_t i, std::size_t j) {
-    int weight = 0;
-    for (std::size_t k = i; k < j; ++k) weight += uses[k].forward ? 1 : -1;
-    if (weight != 0) uncancelled.push_back({w.points[uses[i].key >> 32], w.points[uses[i].key & 0xffffffffu], weight});
-  });
-  check.closedSurface = cancelAlongLines(uncancelled);
   return check;
 }
 
