@@ -541,6 +541,44 @@ TEST(SolidGrid, TheUncoveredPartOfAFaceGoesToTheMeshInFewPieces) {
   EXPECT_EQ(std::adjacent_find(sorted.begin(), sorted.end()), sorted.end()) << "a corner stored twice";
 }
 
+TEST(SolidGrid, ATallCellCutByTheMeshsRoofDoesNotPokeThroughIt) {
+  // A 10 m shed under a roof rising from 10.0 m at z = 0 to 10.4 m at z = 6, left to the mesh
+  // (no wedges); a post far off puts a boundary at y = 10.15, so the shed's cells of the first
+  // metre (z < 1, the post's depth) reach 8-15 cm above the roof. The corners that decide whether
+  // such a cut cell stays solid are sampled 2 cm inside it (2 % of its 10.15 m height hid the
+  // poke once): from above, the HNI shows nothing above the roof (a cell cut away leaves its
+  // walls to the mesh).
+  std::string obj =
+      "v 0 0 0\nv 10 0 0\nv 10 0 6\nv 0 0 6\nv 0 10 0\nv 10 10 0\nv 10 10.4 6\nv 0 10.4 6\n"
+      "f 1 2 3 4\nf 1 5 6 2\nf 4 3 7 8\nf 1 4 8 5\nf 2 6 7 3\nf 5 8 7 6\n";
+  std::istringstream lines(boxObj({20, 0, 0}, {21, 10.15, 1}));
+  for (std::string line; std::getline(lines, line);) {
+    if (line.rfind("f ", 0) == 0) {
+      std::istringstream corners(line.substr(2));
+      line = "f";
+      for (int v; corners >> v;) {
+        line += ' ';
+        line += std::to_string(v + 8);
+      }
+    }
+    obj += line;
+    obj += '\n';
+  }
+  ConvertOptions options;
+  options.solid.wedges = false;
+  auto c = convertText("shed", obj, options);
+  ASSERT_TRUE(c.ok()) << c.error().message;
+  EXPECT_GT(c->complement.area(), 60.0);  // the roof
+  const HniRayCaster caster(c->image, c->originM);
+  for (const double z : {0.25, 0.5, 0.75, 2.0, 4.0, 5.75}) {
+    const double roof = 10.0 + 0.4 * z / 6.0;
+    const RayResult hit = caster.trace({5, 20, z}, {0, -1, 0}, 0.0, RayCastOptions{});
+    EXPECT_TRUE(!hit.hit || hit.distanceM >= 20.0 - roof - 1e-3) << "a cell pokes through the roof at z = " << z;
+  }
+  EXPECT_NEAR(c->report.solid.nutAreaM2 + c->report.solid.complementAreaM2 + c->report.solid.hiddenAreaM2,
+              c->report.solid.areaM2, 1e-6);
+}
+
 TEST(City, ManifestRoundTripsAndRejectsPathsOutside) {
   CityManifest city{"block", {{"a", "a.png", "a.complement.obj", {2678219.125, 395.5, -1243078.25}, 0},
                               {"b", "sub/b.png", "", {1, 2, 3}, 90}}};

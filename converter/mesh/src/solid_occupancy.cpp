@@ -474,7 +474,8 @@ void Builder::trimCutCells(const LazyWinding& winding) {
             for (int ax = 0; ax < 3; ++ax) {
               const auto& B = bounds[static_cast<std::size_t>(ax)];
               const double l = B[static_cast<std::size_t>(c[static_cast<std::size_t>(ax)])], h = B[static_cast<std::size_t>(c[static_cast<std::size_t>(ax)] + 1)];
-              q[ax] = l + ((sample >> ax) & 1 ? 1.0 - kCornerInset : kCornerInset) * (h - l);
+              const double inset = std::min(kCornerInset * (h - l), kCornerInsetTolerances * tol);
+              q[ax] = (sample >> ax) & 1 ? h - inset : l + inset;
             }
             if (winding(q + origin) < kInside) {
               shape[id] = -1;
