@@ -63,6 +63,26 @@ std::string boxObj(glm::dvec3 lo, glm::dvec3 hi, double rotateDeg = 0, const std
   return obj;
 }
 
+// boxObj's text for a box that follows `verticesBefore` vertices in its file: OBJ indices count
+// from the file's start, so its faces' corners are renumbered after them.
+std::string boxObjAfter(int verticesBefore, glm::dvec3 lo, glm::dvec3 hi) {
+  std::string out;
+  std::istringstream lines(boxObj(lo, hi));
+  for (std::string line; std::getline(lines, line);) {
+    if (line.rfind("f ", 0) == 0) {
+      std::istringstream corners(line.substr(2));
+      line = "f";
+      for (int corner; corners >> corner;) {
+        line += ' ';
+        line += std::to_string(corner + verticesBefore);
+      }
+    }
+    out += line;
+    out += '\n';
+  }
+  return out;
+}
+
 // The OBJ text with every face's corners in reverse order (every face turned over).
 std::string reversedFaces(const std::string& obj) {
   std::string out;
@@ -444,24 +464,8 @@ TEST(SolidGrid, WallsStandingOnABasePlateEncloseASolid) {
   std::string obj =
       "v 0 0.2 0\nv 4 0.2 0\nv 4 0.2 4\nv 0 0.2 4\nv 0 3 0\nv 4 3 0\nv 4 3 4\nv 0 3 4\n"
       "f 1 5 6 2\nf 3 7 8 4\nf 4 8 5 1\nf 2 6 7 3\n";
-  // Each box's faces renumbered after the vertices before it (OBJ indices are file-wide).
-  int vertices = 8;
-  for (const auto& [lo, hi] : {std::pair{glm::dvec3(0, 0, 0), glm::dvec3(4, 0.2, 4)},
-                               std::pair{glm::dvec3(0, 3, 0), glm::dvec3(4, 3.2, 4)}}) {
-    std::istringstream box(boxObj(lo, hi));
-    for (std::string line; std::getline(box, line);) {
-      if (line.rfind("f ", 0) == 0) {
-        std::istringstream corners(line.substr(2));
-        line = "f";
-        for (int corner; corners >> corner;) {
-          line += ' ';
-          line += std::to_string(corner + vertices);
-        }
-      }
-      obj += line + "\n";
-    }
-    vertices += 8;
-  }
+  obj += boxObjAfter(8, {0, 0, 0}, {4, 0.2, 4});
+  obj += boxObjAfter(16, {0, 3, 0}, {4, 3.2, 4});
   auto c = convertText("walls_on_plate", obj);
   ASSERT_TRUE(c.ok()) << c.error().message;
   EXPECT_FALSE(c->report.check.closedSurface);
@@ -508,22 +512,7 @@ TEST(SolidGrid, TheUncoveredPartOfAFaceGoesToTheMeshInFewPieces) {
   obj += "v 10 0 12\nv 10 3 12\n";                     // 9, 10: the fin's far edge
   obj += "f 1 5 7 3\nf 1 2 6 5\nf 3 7 8 4\nf 1 3 4 2\nf 5 6 8 7\n";  // -x, -y, +y, -z, +z
   obj += "f 2 4 10 9\n";                                 // +x wall and fin: one quad, x = 10
-  // The far box, its faces renumbered after the first ten vertices.
-  std::istringstream lines(boxObj({20, 1, 10.5}, {21, 2, 11.5}));
-  for (std::string line; std::getline(lines, line);) {
-    if (line.rfind("f ", 0) != 0) {
-      obj += line;
-      obj += '\n';
-      continue;
-    }
-    std::istringstream corners(line.substr(2));
-    obj += 'f';
-    for (int v; corners >> v;) {
-      obj += ' ';
-      obj += std::to_string(v + 10);
-    }
-    obj += '\n';
-  }
+  obj += boxObjAfter(10, {20, 1, 10.5}, {21, 2, 11.5});  // the far box
   auto c = convertText("fin", obj);
   ASSERT_TRUE(c.ok()) << c.error().message;
   EXPECT_EQ(c->report.solid.planes[1], 4);  // y = 0, 1, 2, 3
@@ -551,19 +540,7 @@ TEST(SolidGrid, ATallCellCutByTheMeshsRoofDoesNotPokeThroughIt) {
   std::string obj =
       "v 0 0 0\nv 10 0 0\nv 10 0 6\nv 0 0 6\nv 0 10 0\nv 10 10 0\nv 10 10.4 6\nv 0 10.4 6\n"
       "f 1 2 3 4\nf 1 5 6 2\nf 4 3 7 8\nf 1 4 8 5\nf 2 6 7 3\nf 5 8 7 6\n";
-  std::istringstream lines(boxObj({20, 0, 0}, {21, 10.15, 1}));
-  for (std::string line; std::getline(lines, line);) {
-    if (line.rfind("f ", 0) == 0) {
-      std::istringstream corners(line.substr(2));
-      line = "f";
-      for (int v; corners >> v;) {
-        line += ' ';
-        line += std::to_string(v + 8);
-      }
-    }
-    obj += line;
-    obj += '\n';
-  }
+  obj += boxObjAfter(8, {20, 0, 0}, {21, 10.15, 1});  // the post
   ConvertOptions options;
   options.solid.wedges = false;
   auto c = convertText("shed", obj, options);
