@@ -81,22 +81,18 @@ void forEachEdge(const std::vector<EdgeUse>& uses, F&& f) {
 // in front of a face and just behind it is about (0, 1) where the face looks out of the solid and
 // about (-1, 0) where it looks in (a piece turned inwards, or the whole mesh: walls and a roof
 // without a floor, all facing in); a piece whose samples sum below zero faces in. `openPieces`
-// holds each open piece's faces; small pieces are left as they are.
+// holds the faces of each piece to ask (empty for the others).
 std::vector<std::uint8_t> piecesFacingIn(const Welded& w, std::vector<std::vector<std::uint32_t>> openPieces) {
   const auto areaVector = [&](std::uint32_t f) {
     const auto& t = w.triangles[f];
     return 0.5 * glm::cross(w.points[t[1]] - w.points[t[0]], w.points[t[2]] - w.points[t[0]]);
   };
   const auto area = [&](std::uint32_t f) { return glm::length(areaVector(f)); };
-  double totalArea = 0;
-  for (std::uint32_t f = 0; f < w.triangles.size(); ++f) totalArea += area(f);
   std::vector<std::uint8_t> facingIn(openPieces.size(), 0);
-  std::optional<WindingNumber> winding;  // built only if some piece is large enough to ask
+  std::optional<WindingNumber> winding;  // built only if some piece is asked
   for (std::size_t p = 0; p < openPieces.size(); ++p) {
     std::vector<std::uint32_t>& faces = openPieces[p];
-    double pieceArea = 0;
-    for (std::uint32_t f : faces) pieceArea += area(f);
-    if (faces.empty() || pieceArea < kSidePieceMinShare * totalArea) continue;
+    if (faces.empty()) continue;
     if (!winding) winding.emplace(w.points, w.triangles);
     const std::size_t samples = std::min(faces.size(), kSideSamplesPerPiece);
     std::partial_sort(faces.begin(), faces.begin() + static_cast<std::ptrdiff_t>(samples), faces.end(),
@@ -301,9 +297,12 @@ MeshCheck checkAndRepair(Mesh& mesh) {
     if (volume < 0)
       for (std::size_t f = 0; f < w.triangles.size(); ++f) turnOut(f);
   } else {
-    std::vector<std::vector<std::uint32_t>> openPieces(info.size());
+    double totalArea = 0;
+    for (const Piece& p : info) totalArea += p.area;
+    std::vector<std::vector<std::uint32_t>> openPieces(info.size());  // small ones are left as they are
     for (std::size_t f = 0; f < w.triangles.size(); ++f)
-      if (info[pieceIndex[root[f]]].open) openPieces[pieceIndex[root[f]]].push_back(static_cast<std::uint32_t>(f));
+      if (const Piece& p = info[pieceIndex[root[f]]]; p.open && p.area >= kSidePieceMinShare * totalArea)
+        openPieces[pieceIndex[root[f]]].push_back(static_cast<std::uint32_t>(f));
     const std::vector<std::uint8_t> facingIn = piecesFacingIn(w, std::move(openPieces));
     if (std::find(facingIn.begin(), facingIn.end(), 1) != facingIn.end()) {
       for (std::size_t f = 0; f < w.triangles.size(); ++f)

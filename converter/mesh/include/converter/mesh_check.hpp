@@ -38,9 +38,10 @@ struct MeshCheck {
 
 // Checks `mesh` and repairs it in place: removes degenerate triangles, orients every connected
 // piece consistently, and turns closed pieces outwards (positive signed volume); an open piece
-// keeps the orientation most of its area had unless the winding number of the whole mesh on
-// either side of its faces says it faces into the solid. Positions and materials are kept. Then decides
-// whether the repaired mesh is a closed surface.
+// keeps the orientation most of its area had. Then decides whether the repaired mesh is a closed
+// surface, and turns it whole if that surface has a negative volume; on an open mesh, an open
+// piece that the winding number on either side of its faces finds facing into the solid is
+// turned. Inside is then w >= 1/2 everywhere. Positions and materials are kept.
 MeshCheck checkAndRepair(Mesh& mesh);
 
 }  // namespace nut::converter

@@ -5,8 +5,9 @@
 // w(q) = (1 / 4 pi) * sum over triangles of the signed solid angle the triangle subtends at q.
 // For a closed, outward-oriented mesh it is 1 inside and 0 outside; for the open, overlapping,
 // non-manifold meshes real buildings are, it degrades smoothly (about 1/2 next to a hole), so
-// "inside" is w >= 1/2 once the mesh faces outwards (mesh_check.hpp). It has no special cases at edges or vertices: a query point is never
-// misclassified because it lines up with an edge, which is what makes ray parity fragile.
+// "inside" is w >= 1/2 once the mesh faces outwards (mesh_check.hpp). It has no special cases
+// at edges or vertices: a query point is never misclassified because it lines up with an edge,
+// which is what makes ray parity fragile.
 //
 // Near triangles are summed exactly (Van Oosterom-Strackee solid angle, one atan2 per leaf of the
 // tree); a node of the tree whose bounding sphere is far away (distance > beta * radius) is
