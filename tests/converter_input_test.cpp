@@ -317,6 +317,62 @@ TEST(MeshCheck, TurnsAClosedSurfaceWithTJunctionsInsideOutBack) {
   }
 }
 
+// A 10 m box whose +x wall has a 2 m window opening, with reveals 0.3 m deep leading into the
+// building, and a pane across the opening modelled facing in (as Ingolstadt's glass is). The
+// pane's edges are each shared by the wall, a reveal and the pane, so it is a piece of its own,
+// and next to it the rest of the mesh is at about 1/2 on both sides whichever way it faces; 0.7 m
+// out, the rest is outside air in front and the building behind, so the pane is turned to face
+// out and the room behind it is inside. Left facing in, the air in front would be inside.
+TEST(MeshCheck, TurnsAPaneModelledFacingIntoItsWindowOut) {
+  std::string obj = boxObj({0, 0, 0}, {10, 10, 10});
+  obj.erase(obj.find("f 2 4 8 6\n"), 10);  // the +x wall, made again below with the opening
+  std::vector<glm::dvec3> points;
+  const auto vertex = [&](glm::dvec3 p) {
+    points.push_back(p);
+    char line[96];
+    std::snprintf(line, sizeof line, "v %g %g %g\n", p.x, p.y, p.z);
+    obj += line;
+    return 8 + static_cast<int>(points.size());  // OBJ index, after the box's 8
+  };
+  const auto quad = [&](std::array<int, 4> c, glm::dvec3 facing) {
+    const auto at = [&](int i) { return points[static_cast<std::size_t>(i - 9)]; };
+    if (glm::dot(glm::cross(at(c[1]) - at(c[0]), at(c[2]) - at(c[0])), facing) < 0) std::swap(c[1], c[3]);
+    obj += "f " + std::to_string(c[0]) + ' ' + std::to_string(c[1]) + ' ' + std::to_string(c[2]) + ' ' + std::to_string(c[3]) + '\n';
+  };
+  const double at[4] = {0, 4, 6, 10};
+  int wall[4][4], reveal[2][2];
+  for (int i = 0; i < 4; ++i)
+    for (int j = 0; j < 4; ++j) wall[i][j] = vertex({10, at[i], at[j]});
+  for (int i = 0; i < 2; ++i)
+    for (int j = 0; j < 2; ++j) reveal[i][j] = vertex({9.7, at[i + 1], at[j + 1]});
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j)
+      if (i != 1 || j != 1) quad({wall[i][j], wall[i + 1][j], wall[i + 1][j + 1], wall[i][j + 1]}, {1, 0, 0});
+  quad({wall[1][1], wall[1][2], reveal[0][1], reveal[0][0]}, {0, 1, 0});
+  quad({wall[2][1], wall[2][2], reveal[1][1], reveal[1][0]}, {0, -1, 0});
+  quad({wall[1][1], wall[2][1], reveal[1][0], reveal[0][0]}, {0, 0, 1});
+  quad({wall[1][2], wall[2][2], reveal[1][1], reveal[0][1]}, {0, 0, -1});
+  quad({wall[1][1], wall[2][1], wall[2][2], wall[1][2]}, {-1, 0, 0});  // the pane, facing in
+
+  auto read = readObj(writeFile("pane_in.obj", obj));
+  ASSERT_TRUE(read.ok()) << read.error().message;
+  Mesh mesh = read->objects[0];
+  const MeshCheck check = checkAndRepair(mesh);
+  EXPECT_EQ(check.nonManifoldEdges, 4u);
+  int paneTriangles = 0;
+  for (const auto& t : mesh.triangles) {
+    const glm::dvec3 &a = mesh.positions[t[0]], &b = mesh.positions[t[1]], &c = mesh.positions[t[2]];
+    const glm::dvec3 centroid = (a + b + c) / 3.0;
+    if (centroid.x != 10 || centroid.y < 4 || centroid.y > 6 || centroid.z < 4 || centroid.z > 6) continue;
+    ++paneTriangles;
+    EXPECT_GT(glm::cross(b - a, c - a).x, 0) << "a pane triangle still faces into the building";
+  }
+  EXPECT_EQ(paneTriangles, 2);
+  const WindingNumber w(mesh.positions, mesh.triangles);
+  EXPECT_LT(w.exact({10.05, 5, 5}), 0.5);  // in front of the pane
+  EXPECT_GT(w.exact({9.95, 5, 5}), 0.5);   // in the opening behind it
+}
+
 TEST(MeshCheck, RemovesDegenerateFaces) {
   auto obj = readObj(writeFile("degenerate.obj", boxObj({0, 0, 0}, {1, 1, 1}) + "v 0.5 0 0\nf 1 9 2\n"));
   ASSERT_TRUE(obj.ok());

@@ -35,6 +35,10 @@ constexpr double kSliverAltitudeM = 1e-4;
 constexpr double kSideSampleShare = 0.01, kSideSampleMaxM = 0.01;
 constexpr std::size_t kSideSamplesPerPiece = 16;
 constexpr double kSidePieceMinShare = 0.001;
+// Smaller open pieces (a window pane: about 0.1 % of a house's surface) are judged by the rest of
+// the mesh farther out on either side, if they hold at most this share of the area.
+constexpr double kFarPieceMaxShare = 0.01;
+constexpr double kFarSampleMinM = 0.05, kFarSampleMaxM = 1.0;
 
 // Whether b is a cyclic rotation of a (same orientation) or of a reversed (flipped).
 enum class Turn { Same, Flipped, Other };
@@ -77,36 +81,68 @@ void forEachEdge(const std::vector<EdgeUse>& uses, F&& f) {
   }
 }
 
+// Calls sample(centroid, unit normal, area) for a piece's largest faces (kSideSamplesPerPiece at
+// most); `faces` is reordered.
+template <typename Sample>
+void forLargestFaces(const Welded& w, std::vector<std::uint32_t>& faces, Sample&& sample) {
+  const auto areaVector = [&](std::uint32_t f) {
+    const auto& t = w.triangles[f];
+    return 0.5 * glm::cross(w.points[t[1]] - w.points[t[0]], w.points[t[2]] - w.points[t[0]]);
+  };
+  const std::size_t samples = std::min(faces.size(), kSideSamplesPerPiece);
+  std::partial_sort(faces.begin(), faces.begin() + static_cast<std::ptrdiff_t>(samples), faces.end(),
+                    [&](std::uint32_t a, std::uint32_t b) { return glm::length(areaVector(a)) > glm::length(areaVector(b)); });
+  for (std::size_t i = 0; i < samples; ++i) {
+    const auto& t = w.triangles[faces[i]];
+    const dvec3 av = areaVector(faces[i]);
+    const double area = glm::length(av);
+    sample((w.points[t[0]] + w.points[t[1]] + w.points[t[2]]) / 3.0, av / area, area);
+  }
+}
+
 // Which open pieces face into the solid the rest of the mesh encloses. The winding number just
 // in front of a face and just behind it is about (0, 1) where the face looks out of the solid and
 // about (-1, 0) where it looks in (a piece turned inwards, or the whole mesh: walls and a roof
 // without a floor, all facing in); a piece whose samples sum below zero faces in. `openPieces`
 // holds the faces of each piece to ask (empty for the others).
 std::vector<std::uint8_t> piecesFacingIn(const Welded& w, std::vector<std::vector<std::uint32_t>> openPieces) {
-  const auto areaVector = [&](std::uint32_t f) {
-    const auto& t = w.triangles[f];
-    return 0.5 * glm::cross(w.points[t[1]] - w.points[t[0]], w.points[t[2]] - w.points[t[0]]);
-  };
-  const auto area = [&](std::uint32_t f) { return glm::length(areaVector(f)); };
   std::vector<std::uint8_t> facingIn(openPieces.size(), 0);
   std::optional<WindingNumber> winding;  // built only if some piece is asked
   for (std::size_t p = 0; p < openPieces.size(); ++p) {
-    std::vector<std::uint32_t>& faces = openPieces[p];
-    if (faces.empty()) continue;
+    if (openPieces[p].empty()) continue;
     if (!winding) winding.emplace(w.points, w.triangles);
-    const std::size_t samples = std::min(faces.size(), kSideSamplesPerPiece);
-    std::partial_sort(faces.begin(), faces.begin() + static_cast<std::ptrdiff_t>(samples), faces.end(),
-                      [&](std::uint32_t a, std::uint32_t b) { return area(a) > area(b); });
     double sum = 0;
-    for (std::size_t i = 0; i < samples; ++i) {
-      const auto& t = w.triangles[faces[i]];
-      const dvec3 centroid = (w.points[t[0]] + w.points[t[1]] + w.points[t[2]]) / 3.0;
-      const dvec3 av = areaVector(faces[i]);
-      const double a = glm::length(av);
-      const dvec3 offset = std::min(kSideSampleShare * std::sqrt(a), kSideSampleMaxM) * av / a;
-      sum += a * ((*winding)(centroid + offset) + (*winding)(centroid - offset));
-    }
+    forLargestFaces(w, openPieces[p], [&](const dvec3& centroid, const dvec3& normal, double area) {
+      const dvec3 offset = std::min(kSideSampleShare * std::sqrt(area), kSideSampleMaxM) * normal;
+      sum += area * ((*winding)(centroid + offset) + (*winding)(centroid - offset));
+    });
     facingIn[p] = sum < 0;
+  }
+  return facingIn;
+}
+
+// Which small open pieces face into the solid. Near a piece that fills a hole in the rest of the
+// mesh (a pane in a window opening) the rest's winding number is about 1/2 on both sides, and the
+// piece adds the same jump turned either way, so piecesFacingIn cannot tell; farther out the rest
+// tells which side is outside air and which the building. A piece faces out when the rest is
+// lower in front of its largest faces than behind them, half the piece's size out (at least
+// 5 cm, at most 1 m). `pieces` holds the faces of each piece to ask (empty for the others).
+std::vector<std::uint8_t> smallPiecesFacingIn(const Welded& w, std::vector<std::vector<std::uint32_t>> pieces,
+                                              const std::vector<double>& pieceArea) {
+  std::vector<std::uint8_t> facingIn(pieces.size(), 0);
+  std::optional<WindingNumber> whole;  // built only if some piece is asked
+  for (std::size_t p = 0; p < pieces.size(); ++p) {
+    if (pieces[p].empty()) continue;
+    if (!whole) whole.emplace(w.points, w.triangles);
+    std::vector<std::array<std::uint32_t, 3>> own;
+    for (std::uint32_t f : pieces[p]) own.push_back(w.triangles[f]);
+    const auto rest = [&](const dvec3& q) { return (*whole)(q) - exactWindingNumber(w.points, own, q); };
+    const double distance = std::clamp(0.5 * std::sqrt(pieceArea[p]), kFarSampleMinM, kFarSampleMaxM);
+    double behindLessFront = 0;
+    forLargestFaces(w, pieces[p], [&](const dvec3& centroid, const dvec3& normal, double area) {
+      behindLessFront += area * (rest(centroid - distance * normal) - rest(centroid + distance * normal));
+    });
+    facingIn[p] = behindLessFront < 0;
   }
   return facingIn;
 }
@@ -303,12 +339,24 @@ MeshCheck checkAndRepair(Mesh& mesh) {
     for (std::size_t f = 0; f < w.triangles.size(); ++f)
       if (const Piece& p = info[pieceIndex[root[f]]]; p.open && p.area >= kSidePieceMinShare * totalArea)
         openPieces[pieceIndex[root[f]]].push_back(static_cast<std::uint32_t>(f));
-    const std::vector<std::uint8_t> facingIn = piecesFacingIn(w, std::move(openPieces));
-    if (std::find(facingIn.begin(), facingIn.end(), 1) != facingIn.end()) {
+    bool turned = false;
+    const auto turnPieces = [&](const std::vector<std::uint8_t>& facingIn) {
       for (std::size_t f = 0; f < w.triangles.size(); ++f)
-        if (facingIn[pieceIndex[root[f]]]) turnOut(f);
-      check.closedSurface = isClosedSurface();  // pieces facing each other's way may now close it
-    }
+        if (facingIn[pieceIndex[root[f]]]) {
+          turnOut(f);
+          turned = true;
+        }
+    };
+    turnPieces(piecesFacingIn(w, std::move(openPieces)));
+    // Then the small pieces, by the rest of the mesh as the step above left it.
+    std::vector<std::vector<std::uint32_t>> smallPieces(info.size());
+    for (std::size_t f = 0; f < w.triangles.size(); ++f)
+      if (const Piece& p = info[pieceIndex[root[f]]]; p.open && p.area < kFarPieceMaxShare * totalArea)
+        smallPieces[pieceIndex[root[f]]].push_back(static_cast<std::uint32_t>(f));
+    std::vector<double> pieceArea;
+    for (const Piece& p : info) pieceArea.push_back(p.area);
+    turnPieces(smallPiecesFacingIn(w, std::move(smallPieces), pieceArea));
+    if (turned) check.closedSurface = isClosedSurface();  // pieces facing each other's way may now close it
   }
   check.flippedTriangles = static_cast<std::size_t>(std::count(flipped.begin(), flipped.end(), 1));
   return check;

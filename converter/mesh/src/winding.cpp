@@ -258,4 +258,11 @@ double WindingNumber::exact(const dvec3& world) const {
   return sum / (4.0 * std::numbers::pi);
 }
 
+double exactWindingNumber(const std::vector<dvec3>& positions, std::span<const std::array<std::uint32_t, 3>> triangles,
+                          const dvec3& q) {
+  double sum = 0;
+  for (const auto& t : triangles) sum += solidAngle(positions[t[0]] - q, positions[t[1]] - q, positions[t[2]] - q);
+  return sum / (4.0 * std::numbers::pi);
+}
+
 }  // namespace nut::converter

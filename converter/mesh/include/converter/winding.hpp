@@ -21,6 +21,7 @@
 
 #include <array>
 #include <cstdint>
+#include <span>
 #include <vector>
 
 #include <glm/vec3.hpp>
@@ -72,5 +73,10 @@ class WindingNumber {
   std::vector<Node> nodes_;
   std::vector<Expansion> expansions_;  // per node
 };
+
+// The exact winding number at q of some triangles of a mesh (one atan2 per triangle, no tree):
+// for a handful of triangles, where building a tree would cost more than it saves.
+double exactWindingNumber(const std::vector<glm::dvec3>& positions, std::span<const std::array<std::uint32_t, 3>> triangles,
+                          const glm::dvec3& q);
 
 }  // namespace nut::converter
