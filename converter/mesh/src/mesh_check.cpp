@@ -335,10 +335,13 @@ MeshCheck checkAndRepair(Mesh& mesh) {
   } else {
     double totalArea = 0;
     for (const Piece& p : info) totalArea += p.area;
-    std::vector<std::vector<std::uint32_t>> openPieces(info.size());  // small ones are left as they are
-    for (std::size_t f = 0; f < w.triangles.size(); ++f)
-      if (const Piece& p = info[pieceIndex[root[f]]]; p.open && p.area >= kSidePieceMinShare * totalArea)
-        openPieces[pieceIndex[root[f]]].push_back(static_cast<std::uint32_t>(f));
+    // The faces of each piece that `ask` picks (empty for the others).
+    const auto facesOfPieces = [&](auto ask) {
+      std::vector<std::vector<std::uint32_t>> faces(info.size());
+      for (std::size_t f = 0; f < w.triangles.size(); ++f)
+        if (ask(info[pieceIndex[root[f]]])) faces[pieceIndex[root[f]]].push_back(static_cast<std::uint32_t>(f));
+      return faces;
+    };
     bool turned = false;
     const auto turnPieces = [&](const std::vector<std::uint8_t>& facingIn) {
       for (std::size_t f = 0; f < w.triangles.size(); ++f)
@@ -347,15 +350,12 @@ MeshCheck checkAndRepair(Mesh& mesh) {
           turned = true;
         }
     };
-    turnPieces(piecesFacingIn(w, std::move(openPieces)));
+    turnPieces(piecesFacingIn(w, facesOfPieces([&](const Piece& p) { return p.open && p.area >= kSidePieceMinShare * totalArea; })));
     // Then the small pieces, by the rest of the mesh as the step above left it.
-    std::vector<std::vector<std::uint32_t>> smallPieces(info.size());
-    for (std::size_t f = 0; f < w.triangles.size(); ++f)
-      if (const Piece& p = info[pieceIndex[root[f]]]; p.open && p.area < kFarPieceMaxShare * totalArea)
-        smallPieces[pieceIndex[root[f]]].push_back(static_cast<std::uint32_t>(f));
     std::vector<double> pieceArea;
     for (const Piece& p : info) pieceArea.push_back(p.area);
-    turnPieces(smallPiecesFacingIn(w, std::move(smallPieces), pieceArea));
+    turnPieces(smallPiecesFacingIn(w, facesOfPieces([&](const Piece& p) { return p.open && p.area < kFarPieceMaxShare * totalArea; }),
+                                   pieceArea));
     if (turned) check.closedSurface = isClosedSurface();  // pieces facing each other's way may now close it
   }
   check.flippedTriangles = static_cast<std::size_t>(std::count(flipped.begin(), flipped.end(), 1));
