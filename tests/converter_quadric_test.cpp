@@ -3,7 +3,8 @@
 // QuarterCylinder cells, over 99 % of its surface as NUT, no corner face in the complementary mesh,
 // and renders like its source (at least 99 % of the pixels of every view within 8/255; diff images
 // in the test output folder, converter_quadric/, when not). Corners that are no quarter cylinder (a
-// radius shrinking with height, a wavy arc) stay in the complementary mesh. Corners whose
+// radius shrinking with height, a wavy arc) stay in the complementary mesh; bevels of two or four
+// facets become wedge cells. Corners whose
 // cross-section window recesses cut (the grid is global) become sub-blocks of their own, and so
 // do the house sample's round corners and drum. A hemispherical dome on a box's roof converts as
 // four SphereOctant cells (sub-blocks where a chimney's boundaries cut them), a flatter cap or a
@@ -36,12 +37,13 @@ constexpr int kSegments = 32;
 // Radius of a corner's arc at angle t (0..1 along the arc) and height y.
 using Radius = std::function<double(double t, double y)>;
 
-// The box [0, W] x [0, H] x [0, D] with its four vertical corners rounded (a null radius keeps the
-// corner sharp): corner c lies at +x+z, -x+z, -x-z, +x-z for c = 0..3; every face points outwards.
+// The box [0, W] x [0, H] x [0, D] with its four vertical corners rounded by `segments` facets
+// each (a null radius keeps the corner sharp): corner c lies at +x+z, -x+z, -x-z, +x-z for
+// c = 0..3; every face points outwards.
 // One material: the 1 m strips along the walls that the corners' boundaries cut would show the
 // wall's material on the roof (a cell has one material, and a roof strip a sixth of the wall's area
 // is below the share that separates materials), which is not what these tests are about.
-Mesh roundedBox(const std::array<Radius, 4>& corners) {
+Mesh roundedBox(const std::array<Radius, 4>& corners, int segments = kSegments) {
   Mesh mesh;
   mesh.name = "rounded";
   mesh.materials = {Material{220, 200, 170}};
@@ -57,8 +59,8 @@ Mesh roundedBox(const std::array<Radius, 4>& corners) {
         rings[static_cast<std::size_t>(level)].emplace_back(box.x, y, box.y);
         continue;
       }
-      for (int i = 0; i <= kSegments; ++i) {
-        const double t = static_cast<double>(i) / kSegments, angle = 0.5 * std::numbers::pi * (c + t);
+      for (int i = 0; i <= segments; ++i) {
+        const double t = static_cast<double>(i) / segments, angle = 0.5 * std::numbers::pi * (c + t);
         const double r = corners[static_cast<std::size_t>(c)](t, y);
         const double r0 = corners[static_cast<std::size_t>(c)](0.0, y);  // the axis stays put at each height
         rings[static_cast<std::size_t>(level)].emplace_back(box.x - sx * r0 + r * std::cos(angle), y, box.y - sz * r0 + r * std::sin(angle));
@@ -149,9 +151,6 @@ Mesh roundedBoxWithRecesses() {
   mesh.name = "recessed";
   return mesh;
 }
-
-
-
 
 // Triangles of the complementary mesh whose normal is not along an axis: the corners' faces.
 int curvedComplementFaces(const Conversion& c) {
@@ -337,6 +336,32 @@ TEST(QuarterCylinders, HouseCornersAndDrumBecomeSubBlocks) {
   // for the drum and one SphereOctant cell for the dome.
   EXPECT_EQ(cellsOf(c, SolidGroup::QuarterCylinder), 2);
   EXPECT_EQ(cellsOf(c, SolidGroup::SphereOctant), 1);
+}
+
+// Low-poly bevels on a small building (the box scaled to 2 x 1.2 x 1.6 m, the size of the Kenney
+// models): corners of two facets (radius 10 cm) and of four (30 cm) lie within the 1 cm tolerance
+// of a quarter cylinder, but each facet turns 22.5 and 11.25 degrees from the cylinder's normal at
+// its edges, so a true cylinder in their place would shade unlike the facets (the Kenney models'
+// roof rims were drawn round). Their facets become wedge cells instead: no quadric cell, no
+// corner face in the complementary mesh, and the box renders like its source.
+TEST(QuarterCylinders, BevelsOfFewFacetsStayFaceted) {
+  constexpr double kScale = 0.2;
+  for (const auto& [segments, radius] : {std::pair{2, 0.1}, std::pair{4, 0.3}}) {
+    const Radius bevel = [r = radius / kScale](double, double) { return r; };
+    Mesh mesh = roundedBox({bevel, bevel, bevel, bevel}, segments);
+    for (glm::dvec3& q : mesh.positions) q *= kScale;
+    const Conversion c = testing::convertOrFail(mesh);
+    const SolidStats& s = c.report.solid;
+    std::printf("%d-facet bevels: %d quarter-round pieces, %lld wedge cells, NUT %.2f %%, complement %zu triangles\n", segments,
+                s.quadrics, s.wedgeCells, 100 * nutFraction(c), c.complement.triangles.size());
+    EXPECT_EQ(s.quadrics, 0);
+    EXPECT_EQ(cellsOf(c, SolidGroup::QuarterCylinder) + cellsOf(c, SolidGroup::InverseQuarterCylinder), 0);
+    EXPECT_GE(s.wedgeCells, 4 * segments);
+    EXPECT_EQ(curvedComplementFaces(c), 0);
+    const std::string path = testing::outputDir("converter_quadric") + "/bevel" + std::to_string(segments);
+    const testing::Fidelity f = testing::measureFidelity(mesh, {&c}, path, 99.0);
+    EXPECT_GE(f.worstWithinPct, 99.0) << "see " << path << ".view*.diff.png";
+  }
 }
 
 // A corner whose radius shrinks from 1 m at the ground to 0.6 m at the top (a quarter cone, its

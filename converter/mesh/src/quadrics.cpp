@@ -39,6 +39,10 @@ double octantArea(double a, double b, double c) {
 // arc's area means the faces do not cover it (a hole, a sloped top, a partial arc).
 constexpr double kMinCoverage = 0.95, kMaxCoverage = 1.02;
 
+// A facet may turn at most this far from the curved surface's normal at its corners (half the
+// angle it spans on the arc).
+constexpr double kMaxFacetTurnDeg = 10;
+
 // Sample points of a quadric cell, as a share of the cell's size from the axis edge along u and
 // v: one well inside the quarter disk (radius 0.49) and one well outside it (radius 1.2).
 constexpr double kInnerSample = 0.35, kOuterSample = 0.85;
@@ -112,7 +116,7 @@ void Builder::findQuadrics() {
         for (int k = 0; k < 3; ++k)
           if (!onArc(piece.centre, corner(f, k)) || !onArc(piece.centre, 0.5 * (corner(f, k) + corner(f, (k + 1) % 3))))
             return false;
-        return true;
+        return followsSurface(piece, f);
       });
       if (found) break;
     }
@@ -132,6 +136,17 @@ void Builder::keepPiece(QuadricPiece piece, std::vector<std::uint32_t> members, 
   }
   piece.faces = std::move(members);
   quadrics.push_back(std::move(piece));
+}
+
+// Whether face f turns from the piece's surface normal by at most kMaxFacetTurnDeg at each of
+// its corners: a quarter arc of two or three facets (a low-poly bevel) is drawn faceted, and a
+// true curve in its place would shade unlike it.
+bool Builder::followsSurface(const QuadricPiece& piece, std::uint32_t f) const {
+  const double minCos = std::cos(kMaxFacetTurnDeg * std::numbers::pi / 180);
+  const dvec3 facet = glm::normalize(faces[f].areaVector);
+  for (int k = 0; k < 3; ++k)
+    if (std::abs(glm::dot(facet, piece.normalAt(corner(f, k)))) < minCos) return false;
+  return true;
 }
 
 Builder::PieceSpan Builder::spanOf(const std::vector<std::uint32_t>& members) const {
@@ -202,7 +217,7 @@ void Builder::findSphereOctants() {
           const double off = (piece.rho(0.5 * (a + b)) - 1) * piece.reach();
           if (std::abs(piece.rho(a) - 1) * piece.reach() > tol || off > tol || off < -tol - sagitta) return false;
         }
-        return true;
+        return followsSurface(piece, f);
       });
       if (found) break;
     }

@@ -171,6 +171,15 @@ struct QuadricPiece {
     if (planar) return std::abs(du) + std::abs(dv) + std::abs(de);
     return std::sqrt(du * du + dv * dv + de * de);
   }
+  // The curved surface's unit normal at x (grid frame; up to sign): rho's gradient direction.
+  dvec3 normalAt(const dvec3& x) const {
+    dvec3 g(0.0);
+    g[kU[e]] = (x[kU[e]] - centre.x) / (radius.x * radius.x);
+    g[kV[e]] = (x[kV[e]] - centre.y) / (radius.y * radius.y);
+    if (octant()) g[e] = (x[e] - (eSign > 0 ? e0 : e1)) / ((e1 - e0) * (e1 - e0));
+    const double length = std::sqrt(g.x * g.x + g.y * g.y + g.z * g.z);
+    return length > 0 ? g / length : g;
+  }
   // A corner slope's rho per metre across its plane (the length of rho's gradient).
   double rhoPerMetre() const {
     return std::sqrt(1 / (radius.x * radius.x) + 1 / (radius.y * radius.y) + 1 / ((e1 - e0) * (e1 - e0)));
@@ -276,6 +285,7 @@ struct Builder {
     std::vector<double> materialArea;
   };
   PieceSpan spanOf(const std::vector<std::uint32_t>& members) const;
+  bool followsSurface(const QuadricPiece& piece, std::uint32_t f) const;
 
   void analyseFaces();
   void findSlopes();
