@@ -364,6 +364,25 @@ TEST(QuarterCylinders, BevelsOfFewFacetsStayFaceted) {
   }
 }
 
+// The two-facet bevels on the full-size box: their facets are too small a share of the surface to
+// pay for a slope's boundaries, so they go to the complementary mesh. The planes of each bevel's
+// box are boundaries all the same, so only the corners' cells are trimmed and the walls stay NUT
+// (without them the one cell spanning the box was cut by every bevel and trimmed: NUT 0 %).
+TEST(QuarterCylinders, SmallBevelsLeaveOnlyTheirCornersToTheMesh) {
+  const Radius bevel = [](double, double) { return 0.1; };
+  const Mesh mesh = roundedBox({bevel, bevel, bevel, bevel}, 2);
+  const Conversion c = testing::convertOrFail(mesh);
+  const SolidStats& s = c.report.solid;
+  std::printf("small bevels: %d quarter-round pieces, NUT %.2f %%, complement %zu triangles\n", s.quadrics, 100 * nutFraction(c),
+              c.complement.triangles.size());
+  EXPECT_EQ(s.quadrics, 0);
+  EXPECT_GT(nutFraction(c), 0.98);
+  EXPECT_EQ(curvedComplementFaces(c), 4 * 2 * 2);  // every facet, two triangles each
+  const std::string path = testing::outputDir("converter_quadric") + "/small_bevels";
+  const testing::Fidelity f = testing::measureFidelity(mesh, {&c}, path, 99.0);
+  EXPECT_GE(f.worstWithinPct, 99.0) << "see " << path << ".view*.diff.png";
+}
+
 // A corner whose radius shrinks from 1 m at the ground to 0.6 m at the top (a quarter cone, its
 // faces sloped), and one whose radius waves by 5 cm about 1 m: neither is a quarter cylinder within
 // the 1 cm tolerance, so their faces stay in the complementary mesh and no quadric cell appears.

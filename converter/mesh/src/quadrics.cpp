@@ -116,11 +116,11 @@ void Builder::findQuadrics() {
         for (int k = 0; k < 3; ++k)
           if (!onArc(piece.centre, corner(f, k)) || !onArc(piece.centre, 0.5 * (corner(f, k) + corner(f, (k + 1) % 3))))
             return false;
-        return followsSurface(piece, f);
+        return true;
       });
       if (found) break;
     }
-    if (!found) continue;
+    if (!found || !facetsFollowSurface(piece, members, span)) continue;
     keepPiece(std::move(piece), std::move(members), span.materialArea);
   }
   stats.quadrics = static_cast<int>(quadrics.size());
@@ -138,15 +138,22 @@ void Builder::keepPiece(QuadricPiece piece, std::vector<std::uint32_t> members, 
   quadrics.push_back(std::move(piece));
 }
 
-// Whether face f turns from the piece's surface normal by at most kMaxFacetTurnDeg at each of
-// its corners: a quarter arc of two or three facets (a low-poly bevel) is drawn faceted, and a
-// true curve in its place would shade unlike it.
-bool Builder::followsSurface(const QuadricPiece& piece, std::uint32_t f) const {
+// Whether every face of a piece that fits its surface turns from the surface's normal by at most
+// kMaxFacetTurnDeg at each of its corners. A quarter arc of two to four facets (a low-poly bevel)
+// is drawn faceted, and a true curve in its place would shade unlike it; its faces stay what they
+// were (slopes, or general faces for the mesh), and its box's planes become boundaries all the
+// same, so that the cells its faces cut, trimmed where they are not shown, are the box's alone
+// rather than whatever large cells reach over the corner.
+bool Builder::facetsFollowSurface(const QuadricPiece& piece, const std::vector<std::uint32_t>& members, const PieceSpan& span) {
   const double minCos = std::cos(kMaxFacetTurnDeg * std::numbers::pi / 180);
-  const dvec3 facet = glm::normalize(faces[f].areaVector);
-  for (int k = 0; k < 3; ++k)
-    if (std::abs(glm::dot(facet, piece.normalAt(corner(f, k)))) < minCos) return false;
-  return true;
+  const bool fine = std::all_of(members.begin(), members.end(), [&](std::uint32_t f) {
+    const dvec3 facet = glm::normalize(faces[f].areaVector);
+    for (int k = 0; k < 3; ++k)
+      if (std::abs(glm::dot(facet, piece.normalAt(corner(f, k)))) < minCos) return false;
+    return true;
+  });
+  if (!fine) bevelBoxes.push_back({span.lo, span.hi});
+  return fine;
 }
 
 Builder::PieceSpan Builder::spanOf(const std::vector<std::uint32_t>& members) const {
@@ -217,11 +224,11 @@ void Builder::findSphereOctants() {
           const double off = (piece.rho(0.5 * (a + b)) - 1) * piece.reach();
           if (std::abs(piece.rho(a) - 1) * piece.reach() > tol || off > tol || off < -tol - sagitta) return false;
         }
-        return followsSurface(piece, f);
+        return true;
       });
       if (found) break;
     }
-    if (!found) continue;
+    if (!found || !facetsFollowSurface(piece, members, span)) continue;
     keepPiece(std::move(piece), std::move(members), span.materialArea);
     ++stats.sphereOctants;
   }
@@ -231,6 +238,8 @@ void Builder::findSphereOctants() {
 // elsewhere (a window recess in the wall beside a round corner: the grid is global) may still cut
 // the box into several cells; fitQuadrics gives such a piece a sub-block.
 void Builder::addQuadricBounds() {
+  for (const auto& [lo, hi] : bevelBoxes)
+    for (int a = 0; a < 3; ++a) insertBoundaries(bounds[static_cast<std::size_t>(a)], {lo[a], hi[a]}, size[a], tol);
   for (const QuadricPiece& q : quadrics) {
     if (!q.represented) continue;
     const int e = q.e, u = kU[e], v = kV[e];

@@ -258,6 +258,7 @@ struct Builder {
   std::array<std::vector<double>, 3> clusterMeans;  // per axis
   std::vector<SlopePlane> slopes;
   std::vector<QuadricPiece> quadrics;
+  std::vector<std::pair<dvec3, dvec3>> bevelBoxes;  // boxes of pieces too coarsely faceted to fit
   std::array<std::vector<double>, 3> bounds;
   std::array<int, 3> n{};
   std::vector<std::int8_t> shape;        // per cell: -1 empty, else solid index (0 box, 1..12 wedge)
@@ -285,7 +286,7 @@ struct Builder {
     std::vector<double> materialArea;
   };
   PieceSpan spanOf(const std::vector<std::uint32_t>& members) const;
-  bool followsSurface(const QuadricPiece& piece, std::uint32_t f) const;
+  bool facetsFollowSurface(const QuadricPiece& piece, const std::vector<std::uint32_t>& members, const PieceSpan& span);
 
   void analyseFaces();
   void findSlopes();
