@@ -16,7 +16,7 @@
 //    complementary mesh; a few points along each hip and valley become boundaries, so that those
 //    cells are one row of small cells along the crease. Faces on a quarter of a cylinder whose axis
 //    is parallel to an axis (a round corner, a cove), drawn with facets fine enough to shade like
-//    it (a bevel of two or three facets stays faceted), add the axis and the two tangent lines, so
+//    it (a bevel of two to four facets stays faceted), add the axis and the two tangent lines, so
 //    that the quarter arc fills the cross-section of one cell: those cells become quarter cylinders.
 //    Where other boundaries cut that cross-section, the piece gets a block of its own, one quarter
 //    cylinder across, which every cell of G0 in the piece's box redirects to. Faces on an octant of
