@@ -47,7 +47,6 @@ void Builder::findCornerSlopes() {
   bool any = false;
   for (std::uint32_t f = 0; f < faces.size() && !any; ++f) any = candidate(f);
   if (!any) return;
-  const auto weld = weldCorners(p);
   UnionFind sets(faces.size());
   // Per welded corner, one face for each normal met there (within the angle tolerance).
   std::unordered_map<std::uint32_t, std::vector<std::uint32_t>> seenAt;
@@ -55,7 +54,7 @@ void Builder::findCornerSlopes() {
     if (!candidate(f)) continue;
     const dvec3 normal = unitNormal(f);
     for (int k = 0; k < 3; ++k) {
-      std::vector<std::uint32_t>& seen = seenAt[weld.at(mesh.triangles[f][static_cast<std::size_t>(k)])];
+      std::vector<std::uint32_t>& seen = seenAt[cornerIds[f][static_cast<std::size_t>(k)]];
       const auto same = std::find_if(seen.begin(), seen.end(), [&](std::uint32_t g) { return glm::dot(unitNormal(g), normal) >= cosSame; });
       if (same != seen.end()) sets.unite(f, *same);
       else seen.push_back(f);

@@ -10,7 +10,6 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
-#include <numeric>
 #include <unordered_map>
 
 #include <glm/geometric.hpp>
@@ -51,18 +50,6 @@ constexpr double kPyramidInnerSample = 0.2, kPyramidOuterSample = 0.6;
 
 }  // namespace
 
-std::unordered_map<std::uint32_t, std::uint32_t> weldCorners(const std::vector<dvec3>& p) {
-  std::unordered_map<std::uint32_t, std::uint32_t> weld;
-  std::vector<std::uint32_t> order(p.size());
-  std::iota(order.begin(), order.end(), 0u);
-  std::sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) {
-    return p[a].x != p[b].x ? p[a].x < p[b].x : p[a].y != p[b].y ? p[a].y < p[b].y : p[a].z < p[b].z;
-  });
-  for (std::size_t i = 0; i < order.size(); ++i)
-    weld[order[i]] = i > 0 && p[order[i]] == p[order[i - 1]] ? weld[order[i - 1]] : order[i];
-  return weld;
-}
-
 // Slope faces (normal perpendicular to one axis e) are joined into pieces: connected through
 // shared corners, same axis, normals in the same quadrant of (u, v). A piece whose corners and
 // edge midpoints lie within the tolerance of a quarter ellipse spanning its bounding box, centred
@@ -71,7 +58,6 @@ std::unordered_map<std::uint32_t, std::uint32_t> weldCorners(const std::vector<d
 // slopes. Everything else stays as it was.
 void Builder::findQuadrics() {
   if (!options.quadrics) return;
-  const auto weld = weldCorners(p);
   const auto keyOf = [&](std::uint32_t f) {
     const int e = faces[f].axis;
     return e * 4 + (faces[f].areaVector[kU[e]] > 0 ? 1 : 0) + (faces[f].areaVector[kV[e]] > 0 ? 2 : 0);
@@ -81,7 +67,7 @@ void Builder::findQuadrics() {
   for (std::uint32_t f = 0; f < faces.size(); ++f) {
     if (faces[f].kind != FaceKind::Slope) continue;
     for (int k = 0; k < 3; ++k) {
-      const std::uint64_t id = static_cast<std::uint64_t>(weld.at(mesh.triangles[f][static_cast<std::size_t>(k)])) * 12 +
+      const std::uint64_t id = static_cast<std::uint64_t>(cornerIds[f][static_cast<std::size_t>(k)]) * 12 +
                                static_cast<std::uint64_t>(keyOf(f));
       const auto [it, fresh] = owner.emplace(id, f);
       if (!fresh) sets.unite(f, it->second);
@@ -179,7 +165,6 @@ Builder::PieceSpan Builder::spanOf(const std::vector<std::uint32_t>& members) co
 // from the signs). A cap flatter than a hemisphere, or a bulging one, fits no octant of its box.
 void Builder::findSphereOctants() {
   if (!options.quadrics) return;
-  const auto weld = weldCorners(p);
   const auto candidate = [&](std::uint32_t f) {
     const dvec3& normal = faces[f].areaVector;
     return (faces[f].kind == FaceKind::General || faces[f].kind == FaceKind::Slope) && normal.x != 0 && normal.y != 0 &&
@@ -194,7 +179,7 @@ void Builder::findSphereOctants() {
   for (std::uint32_t f = 0; f < faces.size(); ++f) {
     if (!candidate(f)) continue;
     for (int k = 0; k < 3; ++k) {
-      const std::uint64_t id = static_cast<std::uint64_t>(weld.at(mesh.triangles[f][static_cast<std::size_t>(k)])) * 8 +
+      const std::uint64_t id = static_cast<std::uint64_t>(cornerIds[f][static_cast<std::size_t>(k)]) * 8 +
                                static_cast<std::uint64_t>(keyOf(f));
       const auto [it, fresh] = owner.emplace(id, f);
       if (!fresh) sets.unite(f, it->second);

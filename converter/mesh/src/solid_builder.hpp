@@ -193,10 +193,6 @@ inline bool convexQuadric(SolidGroup g) {
   return g == SolidGroup::QuarterCylinder || g == SolidGroup::SphereOctant || g == SolidGroup::Pyramid;
 }
 
-// Corners matched by position, each to one representative: a mesh may repeat a vertex on either
-// side of a seam (quadrics.cpp).
-std::unordered_map<std::uint32_t, std::uint32_t> weldCorners(const std::vector<dvec3>& p);
-
 // Boundary helpers (solid_grid.cpp). Boundaries are sorted positions, metres from the origin.
 // Index of the last boundary <= x (clamped to a cell index 0..n-1).
 int cellOf(const std::vector<double>& bounds, double x);
@@ -253,6 +249,9 @@ struct Builder {
   double tol;
   dvec3 origin;
   std::vector<dvec3> p;  // positions relative to origin
+  // Each triangle's corners as ids of distinct positions (weld.hpp): a mesh may repeat a vertex
+  // on either side of a seam, and the pieces of quadrics and corner slopes join across it.
+  std::vector<std::array<std::uint32_t, 3>> cornerIds;
   dvec3 size{0.0};
   std::vector<Face> faces;
   std::array<std::vector<double>, 3> clusterMeans;  // per axis

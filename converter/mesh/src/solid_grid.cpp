@@ -16,6 +16,7 @@
 #include <nut/units.hpp>
 
 #include "solid_builder.hpp"
+#include "weld.hpp"
 
 namespace nut::converter {
 namespace solid {
@@ -518,6 +519,7 @@ Result<SolidGrid> buildSolidGrid(const Mesh& mesh, const SolidOptions& options) 
   builder.size = box.max - box.min;
   builder.p.reserve(mesh.positions.size());
   for (const dvec3& q : mesh.positions) builder.p.push_back(q - builder.origin);
+  builder.cornerIds = weld(builder.p, mesh.triangles).triangles;
   // An HNI block spans at most a u24 of millimetres (16.8 km) per axis.
   const double maxSpanM = toMetres(format::kMaxLengthUnits);
   for (int a = 0; a < 3; ++a)

@@ -52,11 +52,6 @@ double polygonArea(const Polygon2& poly) {
   return 0.5 * std::abs(twice);
 }
 
-// Clips every axis-aligned face against the cell faces it covers (step 4 of solid.hpp). Where
-// exactly one side is solid, that cell gets a share of the face's area for the face's material
-// on that side; wedges add their slope (fitWedges), quadric cells their curved face
-// (fitQuadrics). With `complement`, the pieces that are empty on both sides go there and the
-// surface statistics are counted.
 namespace {
 
 // Cells i0..i1 by j0..j1 of a face's plane.
@@ -99,7 +94,12 @@ std::vector<CellRectangle> joinCells(const std::vector<std::array<int, 2>>& cell
 
 }  // namespace
 
-std::vector<Builder::Share> Builder::computeShares(Mesh& complementOut, SolidStats& area) {
+// Clips every axis-aligned face against the cell faces it covers (step 4 of solid.hpp). Where
+// exactly one side is solid, that cell gets a share of the face's area for the face's material
+// on that side; wedges add their slope (fitWedges), quadric cells their curved face
+// (fitQuadrics). The pieces that are empty on both sides go to `complement`, and the surface
+// statistics are counted.
+std::vector<Builder::Share> Builder::computeShares(Mesh& complement, SolidStats& area) {
   // Faces are handled in chunks on all threads, each chunk into its own lists, which are then
   // joined in chunk order so that the result does not depend on the thread count.
   struct Chunk {
@@ -278,22 +278,21 @@ std::vector<Builder::Share> Builder::computeShares(Mesh& complementOut, SolidSta
     }
   });
   std::vector<Share> shares = wedgeShares;
-  Mesh* complement = &complementOut;
   for (Chunk& c : chunks) {
     shares.insert(shares.end(), c.shares.begin(), c.shares.end());
-    const auto base = static_cast<std::uint32_t>(complement->positions.size());
-    complement->positions.insert(complement->positions.end(), c.complement.positions.begin(), c.complement.positions.end());
-    for (const auto& t : c.complement.triangles) complement->triangles.push_back({t[0] + base, t[1] + base, t[2] + base});
-    complement->triangleMaterial.insert(complement->triangleMaterial.end(), c.complement.triangleMaterial.begin(),
+    const auto base = static_cast<std::uint32_t>(complement.positions.size());
+    complement.positions.insert(complement.positions.end(), c.complement.positions.begin(), c.complement.positions.end());
+    for (const auto& t : c.complement.triangles) complement.triangles.push_back({t[0] + base, t[1] + base, t[2] + base});
+    complement.triangleMaterial.insert(complement.triangleMaterial.end(), c.complement.triangleMaterial.begin(),
                                         c.complement.triangleMaterial.end());
     area.nutAreaM2 += c.nut;
     area.complementAreaM2 += c.complementArea;
     area.hiddenAreaM2 += c.hidden;
   }
   // Pieces of neighbouring cells and faces repeat their corners: each is stored once.
-  Welded welded = weld(complement->positions, complement->triangles);
-  complement->positions = std::move(welded.points);
-  complement->triangles = std::move(welded.triangles);
+  Welded welded = weld(complement.positions, complement.triangles);
+  complement.positions = std::move(welded.points);
+  complement.triangles = std::move(welded.triangles);
   std::sort(shares.begin(), shares.end(), [](const Share& x, const Share& y) {
     return x.cell != y.cell ? x.cell < y.cell : x.side != y.side ? x.side < y.side : x.material < y.material;
   });

@@ -1,4 +1,4 @@
-// nut/png_io.hpp — HNI images as PNG files (read by OpenImageIO, written by png_encode), with
+// nut/png_io.hpp — HNI images as PNG files (read by libpng, written by png_encode), with
 // human metadata in text chunks.
 //
 // Pixels are stored and read back bit-exactly: alpha is never premultiplied, no colour conversion.
