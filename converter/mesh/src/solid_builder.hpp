@@ -96,8 +96,8 @@ struct SlopePlane {
   std::uint16_t material = 0;
   std::vector<std::uint32_t> faces;
   bool represented = true;
-  // Cells (u cell, e cell; e cell -1 for all) where fitWedges could not make a wedge: the
-  // plane's faces over them go to the complementary mesh whole.
+  // Cells (u cell, e cell; e cell -1 for all) where fitWedges could not make a wedge: the parts
+  // of the plane's faces over them go to the complementary mesh.
   std::vector<std::pair<int, int>> failed;
   // Cells (u cell, e cell) that the plane's faces cover only partly (its outline cuts through
   // them: a hip, a valley): no wedge, and only the faces' parts over them go to the mesh.
@@ -307,14 +307,15 @@ struct Builder {
   bool solidAt(std::size_t cell, std::span<const dvec3> points) const;
   void trimCutCells(const LazyWinding& winding);
   bool shownByMesh(std::uint32_t face) const;
-  // The parts of slope face f over cells its plane covers only partly (SlopePlane::partial),
-  // which the complementary mesh shows: convex polygons in the grid frame (solid_occupancy.cpp).
+  // The parts of slope face f over cells where its plane made no wedge (SlopePlane::failed and
+  // ::partial), which the complementary mesh shows: convex polygons in the grid frame
+  // (solid_occupancy.cpp).
   struct MeshPiece {
     std::array<dvec3, 12> p;
     int n = 0;
     double area = 0;
   };
-  std::vector<MeshPiece> partialPieces(std::uint32_t face) const;
+  std::vector<MeshPiece> meshPieces(std::uint32_t face) const;
   struct Share {
     std::size_t cell;
     std::uint16_t material;
@@ -323,7 +324,6 @@ struct Builder {
   };
   std::vector<Share> wedgeShares;  // filled by fitWedges and fitQuadrics
   std::vector<Share> computeShares(Mesh& complement, SolidStats& area);
-  bool onFailedCell(std::uint32_t face) const;
   std::array<std::vector<double>, 3> materialConflicts(const std::vector<Share>& shares, double& conflictArea) const;
   void assignMaterials(Block& block, std::vector<Block>& subBlocks, const std::vector<Share>& shares);
   std::array<std::vector<double>, 3> extraBounds;  // from material conflicts

@@ -129,10 +129,10 @@ std::vector<Builder::Share> Builder::computeShares(Mesh& complement, SolidStats&
         continue;
       }
       if (face.kind == FaceKind::Slope || face.kind == FaceKind::Quadric) {
-        // A slope face's parts over cells its plane covers only partly go to the mesh.
+        // A slope face's parts over cells where its plane made no wedge go to the mesh.
         double meshArea = 0;
         if (face.kind == FaceKind::Slope)
-          for (const MeshPiece& piece : partialPieces(f)) {
+          for (const MeshPiece& piece : meshPieces(f)) {
             addComplementPolygon(piece.p.data(), piece.n, material);
             meshArea += piece.area;
           }

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <limits>
 #include <numeric>
 
 #include <glm/geometric.hpp>
@@ -202,8 +203,9 @@ void Builder::classify(const LazyWinding& winding) {
 // diagonally (a hip, a valley, the slanted side of a triangular slope), the surface there is
 // partly another plane's, with a crease (solid = y' <= min or max of two planes) that no solid
 // has, and a wedge of either plane would fill or cut away the other's part. Such a cell is left as
-// the occupancy step classified it and counts as failed; its part of each face goes to the
-// complementary mesh (partialPieces), and trimCutCells keeps the cell solid only if it is inside
+// the occupancy step classified it and counts as failed, as does a cell where both halves came
+// out empty (an overhanging eave's sheet); the part of each face over a failed cell goes to the
+// complementary mesh (meshPieces), and trimCutCells keeps the cell solid only if it is inside
 // all over. Cells the faces do not reach at all (the rest of the plane's bounding box: beyond a
 // hip, a chimney's hole) are none of the plane's business. Returns whether every slope
 // closeSlopes accepted came out as wedges.
@@ -249,6 +251,15 @@ bool Builder::fitWedges(const LazyWinding& winding) {
       return du * de - c <= slack ? 1 : c <= slack ? 0 : -1;
     };
     int good = 0, bad = 0;
+    double goodArea = 0, badArea = 0;  // the cells' cross-sections (u, e)
+    const auto pass = [&](double area) {
+      ++good;
+      goodArea += area;
+    };
+    const auto fail = [&](double area) {
+      ++bad;
+      badArea += area;
+    };
     plane.failed.clear();
     plane.partial.clear();
     for (int i = i0; i <= i1 && bad <= good + kWedgeGiveUp; ++i) {
@@ -264,6 +275,7 @@ bool Builder::fitWedges(const LazyWinding& winding) {
         // Cut off the diagonal: centre classification stands, for every cell along e.
         plane.failed.push_back({i, -1});
         bad += k1 - k0 + 1;
+        badArea += (ub - ua) * (E[static_cast<std::size_t>(k1 + 1)] - E[static_cast<std::size_t>(k0)]);
         continue;
       }
       // The two corners off the diagonal: rising diagonal leaves (1,0) and (0,1), falling (0,0) and (1,1).
@@ -273,15 +285,16 @@ bool Builder::fitWedges(const LazyWinding& winding) {
       const double vlo = V[static_cast<std::size_t>(j)], vhi = V[static_cast<std::size_t>(j + 1)];
       for (int k = k0; k <= k1 && bad <= good + kWedgeGiveUp; ++k) {
         const double ea = E[static_cast<std::size_t>(k)], eb = E[static_cast<std::size_t>(k + 1)];
+        const double crossSection = (ub - ua) * (eb - ea);
         if (ea < plane.e0 - tol || eb > plane.e1 + tol) {
           plane.failed.push_back({i, k});
-          ++bad;
+          fail(crossSection);
           continue;
         }
         if (const int covered = coverage(i, k); covered <= 0) {
           if (covered < 0) {
             plane.partial.push_back({i, k});
-            ++bad;
+            fail(crossSection);
           }
           continue;
         }
@@ -306,10 +319,10 @@ bool Builder::fitWedges(const LazyWinding& winding) {
           // both: the slope is missing from the solid, so the mesh must show it.
           sh = in[0] ? 0 : -1;
           if (in[0]) {
-            ++good;
+            pass(crossSection);
           } else {
             plane.failed.push_back({i, k});
-            ++bad;
+            fail(crossSection);
           }
           continue;
         }
@@ -317,24 +330,29 @@ bool Builder::fitWedges(const LazyWinding& winding) {
         sh = static_cast<std::int8_t>(makeSolid(SolidGroup::Wedge, e * 4 + oc[0] + 2 * oc[1]).index);
         hint[index(cell)] = plane.material;
         wedgeShares.push_back({index(cell), plane.material, 6, (eb - ea) * std::hypot(ub - ua, vhi - vlo)});
-        ++good;
+        pass(crossSection);
       }
     }
-    // Mostly wedges: the slope stays, its faces over failed cells go to the complementary mesh.
-    // Mostly failed: its boundaries were added for nothing.
-    plane.represented = good > 0 && bad <= good + kWedgeGiveUp && (options.partialWedges ? bad <= good : bad == 0);
+    // Mostly wedges, by count of cells and by their cross-section: the slope stays, the parts of
+    // its faces over failed cells go to the complementary mesh. Mostly failed: its boundaries
+    // were added for nothing. (A car park ramp, a slab thinner than the cells it crosses, fails
+    // in a few wide cells between many narrow wedges: more than half of its cross-section.)
+    plane.represented = good > 0 && bad <= good + kWedgeGiveUp &&
+                        (options.partialWedges ? bad <= good && badArea <= goodArea : bad == 0);
     stats.slopesAsWedges += plane.represented;
     all = all && plane.represented;
   }
   return all;
 }
 
-std::vector<Builder::MeshPiece> Builder::partialPieces(std::uint32_t f) const {
+std::vector<Builder::MeshPiece> Builder::meshPieces(std::uint32_t f) const {
   std::vector<MeshPiece> out;
   const Face& face = faces[f];
   if (face.kind != FaceKind::Slope || face.area <= 0) return out;
   const SlopePlane& plane = slopes[static_cast<std::size_t>(face.group)];
-  if (!plane.represented || plane.partial.empty()) return out;
+  if (!plane.represented || (plane.partial.empty() && plane.failed.empty())) return out;
+  std::vector<std::pair<int, int>> cells = plane.partial;
+  cells.insert(cells.end(), plane.failed.begin(), plane.failed.end());
   const int e = plane.e, u = kU[e], v = kV[e];
   const auto& U = bounds[static_cast<std::size_t>(u)];
   const auto& E = bounds[static_cast<std::size_t>(e)];
@@ -349,9 +367,11 @@ std::vector<Builder::MeshPiece> Builder::partialPieces(std::uint32_t f) const {
   // The face's own plane lifts the pieces back to 3D (its normal is off v by more than the angle tolerance).
   const dvec3 normal = face.areaVector / face.area;
   const double d = glm::dot(normal, P[0]);
-  for (const auto& [i, k] : plane.partial) {
+  for (const auto& [i, k] : cells) {
     const double ua = U[static_cast<std::size_t>(i)], ub = U[static_cast<std::size_t>(i + 1)];
-    const double ea = E[static_cast<std::size_t>(k)], eb = E[static_cast<std::size_t>(k + 1)];
+    // e cell -1: the whole column failed.
+    constexpr double kAll = std::numeric_limits<double>::infinity();
+    const double ea = k < 0 ? -kAll : E[static_cast<std::size_t>(k)], eb = k < 0 ? kAll : E[static_cast<std::size_t>(k + 1)];
     if (ub <= uLo || ua >= uHi || eb <= eLo || ea >= eHi) continue;
     Polygon2 piece = tri;
     clipAxis(piece, 0, ua, false);
@@ -378,13 +398,14 @@ std::vector<Builder::MeshPiece> Builder::partialPieces(std::uint32_t f) const {
 }
 
 // Whether the complementary mesh shows face f whole: it is neither axis-aligned nor part of a
-// slope shown by wedges at its place nor of a piece shown by quadric cells.
+// slope shown by wedges (whose faces the mesh shows only over failed cells: meshPieces) nor of a
+// piece shown by quadric cells.
 bool Builder::shownByMesh(std::uint32_t f) const {
   const Face& face = faces[f];
   if (face.kind == FaceKind::General) return true;
   if (face.kind == FaceKind::Aligned) return false;
   if (face.kind == FaceKind::Quadric) return !quadrics[static_cast<std::size_t>(face.group)].represented;
-  return !slopes[static_cast<std::size_t>(face.group)].represented || onFailedCell(f);
+  return !slopes[static_cast<std::size_t>(face.group)].represented;
 }
 
 // Separating-axis test of a triangle against an axis-aligned box (Akenine-Moeller 2001): the 3
@@ -450,8 +471,8 @@ void Builder::trimCutCells(const LazyWinding& winding) {
       markCut(corner(f, 0), corner(f, 1), corner(f, 2));
       continue;
     }
-    // A slope face's parts over cells its plane covers only partly (a hip's crease).
-    for (const MeshPiece& piece : partialPieces(f))
+    // A slope face's parts over cells where its plane made no wedge (a hip's crease, an eave).
+    for (const MeshPiece& piece : meshPieces(f))
       for (int m = 1; m + 1 < piece.n; ++m)
         markCut(piece.p[0], piece.p[static_cast<std::size_t>(m)], piece.p[static_cast<std::size_t>(m + 1)]);
   }
@@ -488,21 +509,6 @@ void Builder::trimCutCells(const LazyWinding& winding) {
       },
       options.progress);
   stats.trimmedCells += trimmed;
-}
-
-// Whether a face of a slope shown by wedges crosses a cell where fitWedges made no wedge.
-bool Builder::onFailedCell(std::uint32_t f) const {
-  const SlopePlane& plane = slopes[static_cast<std::size_t>(faces[f].group)];
-  if (plane.failed.empty()) return false;
-  const int e = plane.e, u = kU[e];
-  const dvec3 a = corner(f, 0), b = corner(f, 1), c = corner(f, 2);
-  const auto& U = bounds[static_cast<std::size_t>(u)];
-  const auto& E = bounds[static_cast<std::size_t>(e)];
-  const int i0 = cellOf(U, std::min({a[u], b[u], c[u]}) + tol), i1 = cellOf(U, std::max({a[u], b[u], c[u]}) - tol);
-  const int k0 = cellOf(E, std::min({a[e], b[e], c[e]}) + tol), k1 = cellOf(E, std::max({a[e], b[e], c[e]}) - tol);
-  for (const auto& [i, k] : plane.failed)
-    if (i >= i0 && i <= i1 && (k < 0 || (k >= k0 && k <= k1))) return true;
-  return false;
 }
 
 }  // namespace nut::converter::solid
