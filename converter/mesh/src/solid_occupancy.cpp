@@ -351,8 +351,6 @@ std::vector<Builder::MeshPiece> Builder::meshPieces(std::uint32_t f) const {
   if (face.kind != FaceKind::Slope || face.area <= 0) return out;
   const SlopePlane& plane = slopes[static_cast<std::size_t>(face.group)];
   if (!plane.represented || (plane.partial.empty() && plane.failed.empty())) return out;
-  std::vector<std::pair<int, int>> cells = plane.partial;
-  cells.insert(cells.end(), plane.failed.begin(), plane.failed.end());
   const int e = plane.e, u = kU[e], v = kV[e];
   const auto& U = bounds[static_cast<std::size_t>(u)];
   const auto& E = bounds[static_cast<std::size_t>(e)];
@@ -367,33 +365,34 @@ std::vector<Builder::MeshPiece> Builder::meshPieces(std::uint32_t f) const {
   // The face's own plane lifts the pieces back to 3D (its normal is off v by more than the angle tolerance).
   const dvec3 normal = face.areaVector / face.area;
   const double d = glm::dot(normal, P[0]);
-  for (const auto& [i, k] : cells) {
-    const double ua = U[static_cast<std::size_t>(i)], ub = U[static_cast<std::size_t>(i + 1)];
-    // e cell -1: the whole column failed.
-    constexpr double kAll = std::numeric_limits<double>::infinity();
-    const double ea = k < 0 ? -kAll : E[static_cast<std::size_t>(k)], eb = k < 0 ? kAll : E[static_cast<std::size_t>(k + 1)];
-    if (ub <= uLo || ua >= uHi || eb <= eLo || ea >= eHi) continue;
-    Polygon2 piece = tri;
-    clipAxis(piece, 0, ua, false);
-    clipAxis(piece, 0, ub, true);
-    clipAxis(piece, 1, ea, false);
-    clipAxis(piece, 1, eb, true);
-    MeshPiece m;
-    m.area = polygonArea(piece) / projected * face.area;
-    if (piece.n < 3 || m.area <= kMinPieceAreaM2) continue;  // a clipping sliver
-    for (int c = 0; c < piece.n; ++c) {
-      // A corner on a cell's side comes out of clipping twice, or nearly: once is enough.
-      const dvec2 at = piece.p[static_cast<std::size_t>(c)];
-      const dvec3& last = m.p[static_cast<std::size_t>(std::max(m.n - 1, 0))];
-      if (m.n > 0 && glm::length(at - dvec2(last[u], last[e])) <= 1e-9) continue;
-      dvec3& q = m.p[static_cast<std::size_t>(m.n++)];
-      q[u] = at.x;
-      q[e] = at.y;
-      q[v] = (d - normal[u] * q[u] - normal[e] * q[e]) / normal[v];
+  constexpr double kAll = std::numeric_limits<double>::infinity();
+  for (const auto* cells : {&plane.partial, &plane.failed})
+    for (const auto& [i, k] : *cells) {
+      const double ua = U[static_cast<std::size_t>(i)], ub = U[static_cast<std::size_t>(i + 1)];
+      // e cell -1: the whole column failed.
+      const double ea = k < 0 ? -kAll : E[static_cast<std::size_t>(k)], eb = k < 0 ? kAll : E[static_cast<std::size_t>(k + 1)];
+      if (ub <= uLo || ua >= uHi || eb <= eLo || ea >= eHi) continue;
+      Polygon2 piece = tri;
+      clipAxis(piece, 0, ua, false);
+      clipAxis(piece, 0, ub, true);
+      clipAxis(piece, 1, ea, false);
+      clipAxis(piece, 1, eb, true);
+      MeshPiece m;
+      m.area = polygonArea(piece) / projected * face.area;
+      if (piece.n < 3 || m.area <= kMinPieceAreaM2) continue;  // a clipping sliver
+      for (int c = 0; c < piece.n; ++c) {
+        // A corner on a cell's side comes out of clipping twice, or nearly: once is enough.
+        const dvec2 at = piece.p[static_cast<std::size_t>(c)];
+        const dvec3& last = m.p[static_cast<std::size_t>(std::max(m.n - 1, 0))];
+        if (m.n > 0 && glm::length(at - dvec2(last[u], last[e])) <= 1e-9) continue;
+        dvec3& q = m.p[static_cast<std::size_t>(m.n++)];
+        q[u] = at.x;
+        q[e] = at.y;
+        q[v] = (d - normal[u] * q[u] - normal[e] * q[e]) / normal[v];
+      }
+      while (m.n > 1 && glm::length(m.p[static_cast<std::size_t>(m.n - 1)] - m.p[0]) <= 1e-9) --m.n;
+      if (m.n >= 3) out.push_back(m);
     }
-    while (m.n > 1 && glm::length(m.p[static_cast<std::size_t>(m.n - 1)] - m.p[0]) <= 1e-9) --m.n;
-    if (m.n >= 3) out.push_back(m);
-  }
   return out;
 }
 

@@ -1,4 +1,5 @@
-// Positions welded by exact equality (mesh_check.cpp's edges, the complementary mesh's corners).
+// Positions welded by exact equality (mesh_check.cpp's edges, the complementary mesh's corners,
+// the solid builder's corner ids that join quadric and corner-slope pieces across seams).
 #pragma once
 
 #include <array>
