@@ -13,7 +13,9 @@
 // 8/255; the diff images go to the test output folder, converter_wedge/, when not). The hip and L
 // roofs keep most of their roof surface as NUT wedges and show the hips' and the valley's parts in
 // the complementary mesh, nothing else; the gable roof is all wedges with an empty complementary
-// mesh, its gable triangles in the wall's material, in two materials and in one. With only slopes that are wedges everywhere
+// mesh, its gable triangles in the wall's material, in two materials and in one. A gable roof
+// overhanging its walls leaves the overhang to the complementary mesh in a few pieces, however
+// many boundaries cross its eaves. With only slopes that are wedges everywhere
 // (the converter's coarser fallback) the hip roof's four slopes fail and are dropped, and it still
 // renders like its source. The meshes are also written to converter_wedge/*.obj for `nut convert`.
 #include <gtest/gtest.h>
@@ -154,6 +156,33 @@ Mesh gableRoof() {
   b.polygon({{10, 0, 0}, {10, 0, 8}, {10, kEaves, 8}, {10, kRidge, 4}, {10, kEaves, 0}}, kEast, kWall);
   b.polygon({{0, kEaves, 0}, {10, kEaves, 0}, {10, kRidge, 4}, {0, kRidge, 4}}, kUp, kRoof);
   b.polygon({{0, kEaves, 8}, {10, kEaves, 8}, {10, kRidge, 4}, {0, kRidge, 4}}, kUp, kRoof);
+  return b.mesh;
+}
+
+// The gable roof with its pitches carried 0.5 m past every wall as open sheets (eaves and
+// overhanging gables, as most of Zurich's LoD2 roofs are), and `chimneys` chimneys 0.6 m square
+// rising from inside the house through the -z pitch: each makes two boundaries along x, across
+// the eaves.
+constexpr double kOverhang = 0.5;
+Mesh overhangingGableRoof(int chimneys) {
+  MeshBuilder b("overhanging_gable_roof_" + std::to_string(chimneys));
+  b.polygon({{0, 0, 0}, {10, 0, 0}, {10, 0, 8}, {0, 0, 8}}, kDown, kWall);
+  b.polygon({{0, 0, 0}, {10, 0, 0}, {10, kEaves, 0}, {0, kEaves, 0}}, kSouth, kWall);
+  b.polygon({{0, 0, 8}, {10, 0, 8}, {10, kEaves, 8}, {0, kEaves, 8}}, kNorth, kWall);
+  b.polygon({{0, 0, 0}, {0, 0, 8}, {0, kEaves, 8}, {0, kRidge, 4}, {0, kEaves, 0}}, kWest, kWall);
+  b.polygon({{10, 0, 0}, {10, 0, 8}, {10, kEaves, 8}, {10, kRidge, 4}, {10, kEaves, 0}}, kEast, kWall);
+  const double x0 = -kOverhang, x1 = 10 + kOverhang, low = kEaves - 0.75 * kOverhang;
+  b.polygon({{x0, low, -kOverhang}, {x1, low, -kOverhang}, {x1, kRidge, 4}, {x0, kRidge, 4}}, kUp, kRoof);
+  b.polygon({{x0, low, 8 + kOverhang}, {x1, low, 8 + kOverhang}, {x1, kRidge, 4}, {x0, kRidge, 4}}, kUp, kRoof);
+  for (int c = 0; c < chimneys; ++c) {
+    const double a = 1.0 + 1.8 * c, z0 = 1.5, z1 = 2.1, y0 = 4, y1 = kRidge + 1;
+    b.polygon({{a, y0, z0}, {a + 0.6, y0, z0}, {a + 0.6, y0, z1}, {a, y0, z1}}, kDown, kWall);
+    b.polygon({{a, y1, z0}, {a + 0.6, y1, z0}, {a + 0.6, y1, z1}, {a, y1, z1}}, kUp, kWall);
+    b.polygon({{a, y0, z0}, {a + 0.6, y0, z0}, {a + 0.6, y1, z0}, {a, y1, z0}}, kSouth, kWall);
+    b.polygon({{a, y0, z1}, {a + 0.6, y0, z1}, {a + 0.6, y1, z1}, {a, y1, z1}}, kNorth, kWall);
+    b.polygon({{a, y0, z0}, {a, y0, z1}, {a, y1, z1}, {a, y1, z0}}, kWest, kWall);
+    b.polygon({{a + 0.6, y0, z0}, {a + 0.6, y0, z1}, {a + 0.6, y1, z1}, {a + 0.6, y1, z0}}, kEast, kWall);
+  }
   return b.mesh;
 }
 
@@ -352,6 +381,31 @@ TEST(Wedges, GableRoofIsAllWedges) {
   EXPECT_GE(f.fidelity.worstWithinPct, 99.0) << "see converter_wedge/gable_roof_one_material.view*.diff.png";
 }
 
+// An eave is a sheet with no inside, so the cells under it fail and the roof's faces over them go
+// to the complementary mesh: the overhang, a frame 0.5 m wide around the walls (9.5 m^2 in plan
+// per pitch, 1.25 m^2 of surface per m^2 of plan). The boundaries that chimneys add across the
+// eaves cut that frame into more cells, but not into more pieces: neighbouring cells are clipped
+// as one rectangle, so the mesh is the same few triangles with 3 chimneys as with 5 (cut cell by
+// cell it grew with every chimney: 80 and 96 triangles).
+TEST(Wedges, AnOverhangGoesToTheMeshInPiecesThatDoNotMultiplyWithTheCells) {
+  const double overhang = 2 * (11.0 * 4.5 - 10.0 * 4.0) * 1.25;
+  std::array<int, 2> triangles{}, cellsAlongX{};
+  for (const int chimneys : {3, 5}) {
+    const Mesh mesh = overhangingGableRoof(chimneys);
+    writeObj(mesh);
+    const Conversion c = testing::convertOrFail(mesh);
+    const Figures f = measure(mesh, c, {}, mesh.name);
+    EXPECT_GE(f.fidelity.worstWithinPct, 99.0) << "see converter_wedge/" << mesh.name << ".view*.diff.png";
+    EXPECT_EQ(c.report.solid.slopesAsWedges, 2) << mesh.name;
+    EXPECT_NEAR(f.meshArea, overhang, 0.01 * overhang) << mesh.name;
+    EXPECT_EQ(f.meshWallTriangles, 0) << mesh.name;
+    triangles[chimneys == 3 ? 0 : 1] = f.meshTriangles;
+    cellsAlongX[chimneys == 3 ? 0 : 1] = c.report.solid.cells[0];
+  }
+  EXPECT_GE(cellsAlongX[1], cellsAlongX[0] + 4);  // the two more chimneys do cut the eaves
+  EXPECT_EQ(triangles[1], triangles[0]);
+  EXPECT_LE(triangles[0], 2 * 3 * 2 * 5);  // per pitch 3 rectangles, each over 2 faces, at most 5 triangles a piece
+}
 
 // Distance from q to triangle abc along its normal, when q's foot lies inside it; infinity when
 // it lies outside (or the triangle is degenerate).

@@ -96,12 +96,15 @@ struct SlopePlane {
   std::uint16_t material = 0;
   std::vector<std::uint32_t> faces;
   bool represented = true;
-  // Cells (u cell, e cell; e cell -1 for all) where fitWedges could not make a wedge: the parts
-  // of the plane's faces over them go to the complementary mesh.
-  std::vector<std::pair<int, int>> failed;
-  // Cells (u cell, e cell) that the plane's faces cover only partly (its outline cuts through
-  // them: a hip, a valley): no wedge, and only the faces' parts over them go to the mesh.
-  std::vector<std::pair<int, int>> partial;
+  // Where fitWedges made no wedge, as rectangles [u0, u1] x [e0, e1] of its cross-section: cells
+  // where it could not (a failed column spans all of e) and cells the plane's faces cover only
+  // partly (its outline cuts through them: a hip, a valley). The parts of the plane's faces over
+  // them go to the complementary mesh. Neighbouring cells are merged into one rectangle, so that
+  // an eave strip along a roof is one piece of each face, not one per cell it crosses.
+  struct Region {
+    double u0, u1, e0, e1;
+  };
+  std::vector<Region> meshRegions;
   // Points along the hips and valleys it shares with slopes along other axes, a few per edge:
   // closeSlopes makes them boundaries, so that the cells such an edge cuts are one small cell per
   // step along it (findCreasePoints, solid_grid.cpp).

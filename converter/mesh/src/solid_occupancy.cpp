@@ -6,6 +6,7 @@
 #include <cmath>
 #include <limits>
 #include <numeric>
+#include <tuple>
 
 #include <glm/geometric.hpp>
 
@@ -196,6 +197,40 @@ void Builder::classify(const LazyWinding& winding) {
   stats.columns = static_cast<long long>(columns);
 }
 
+namespace {
+
+// The cells (u cell, e cell; e cell -1 for a whole column) as few rectangles: runs along e, then
+// runs of equal e spans along u.
+std::vector<SlopePlane::Region> mergedRegions(std::vector<std::pair<int, int>> cells, const std::vector<double>& U,
+                                              const std::vector<double>& E) {
+  std::sort(cells.begin(), cells.end());
+  struct Run {
+    int k0, k1, i;
+  };
+  std::vector<Run> runs;
+  for (const auto& [i, k] : cells) {
+    if (!runs.empty() && runs.back().i == i && runs.back().k1 + 1 == k && k >= 0) ++runs.back().k1;
+    else runs.push_back({k, k, i});
+  }
+  std::sort(runs.begin(), runs.end(), [](const Run& a, const Run& b) {
+    return std::tie(a.k0, a.k1, a.i) < std::tie(b.k0, b.k1, b.i);
+  });
+  constexpr double kAll = std::numeric_limits<double>::infinity();
+  std::vector<SlopePlane::Region> out;
+  for (std::size_t r = 0; r < runs.size();) {
+    std::size_t next = r + 1;
+    while (next < runs.size() && runs[next].k0 == runs[r].k0 && runs[next].k1 == runs[r].k1 && runs[next].i == runs[next - 1].i + 1) ++next;
+    const Run& first = runs[r];
+    out.push_back({U[static_cast<std::size_t>(first.i)], U[static_cast<std::size_t>(runs[next - 1].i + 1)],
+                   first.k0 < 0 ? -kAll : E[static_cast<std::size_t>(first.k0)],
+                   first.k0 < 0 ? kAll : E[static_cast<std::size_t>(first.k1 + 1)]});
+    r = next;
+  }
+  return out;
+}
+
+}  // namespace
+
 // Cells a slope runs through corner to corner become wedges (or stay boxes / empty when both
 // halves are solid / empty); a slope shown entirely by wedges leaves the complementary mesh.
 // A cell becomes a wedge of a plane only where the plane's faces cover its whole extent in (u, e)
@@ -260,8 +295,8 @@ bool Builder::fitWedges(const LazyWinding& winding) {
       ++bad;
       badArea += area;
     };
-    plane.failed.clear();
-    plane.partial.clear();
+    plane.meshRegions.clear();
+    std::vector<std::pair<int, int>> missed;  // cells (u, e) with no wedge whose faces the mesh shows
     for (int i = i0; i <= i1 && bad <= good + kWedgeGiveUp; ++i) {
       const double ua = U[static_cast<std::size_t>(i)], ub = U[static_cast<std::size_t>(i + 1)];
       const double va = plane.vAt(ua), vb = plane.vAt(ub);
@@ -273,7 +308,7 @@ bool Builder::fitWedges(const LazyWinding& winding) {
         for (int k = k0; k <= k1 && !reached; ++k) reached = coverage(i, k) != 0;
         if (!reached) continue;
         // Cut off the diagonal: centre classification stands, for every cell along e.
-        plane.failed.push_back({i, -1});
+        missed.push_back({i, -1});
         bad += k1 - k0 + 1;
         badArea += (ub - ua) * (E[static_cast<std::size_t>(k1 + 1)] - E[static_cast<std::size_t>(k0)]);
         continue;
@@ -287,13 +322,13 @@ bool Builder::fitWedges(const LazyWinding& winding) {
         const double ea = E[static_cast<std::size_t>(k)], eb = E[static_cast<std::size_t>(k + 1)];
         const double crossSection = (ub - ua) * (eb - ea);
         if (ea < plane.e0 - tol || eb > plane.e1 + tol) {
-          plane.failed.push_back({i, k});
+          missed.push_back({i, k});
           fail(crossSection);
           continue;
         }
         if (const int covered = coverage(i, k); covered <= 0) {
           if (covered < 0) {
-            plane.partial.push_back({i, k});
+            missed.push_back({i, k});
             fail(crossSection);
           }
           continue;
@@ -321,7 +356,7 @@ bool Builder::fitWedges(const LazyWinding& winding) {
           if (in[0]) {
             pass(crossSection);
           } else {
-            plane.failed.push_back({i, k});
+            missed.push_back({i, k});
             fail(crossSection);
           }
           continue;
@@ -339,6 +374,7 @@ bool Builder::fitWedges(const LazyWinding& winding) {
     // in a few wide cells between many narrow wedges: more than half of its cross-section.)
     plane.represented = good > 0 && bad <= good + kWedgeGiveUp &&
                         (options.partialWedges ? bad <= good && badArea <= goodArea : bad == 0);
+    if (plane.represented) plane.meshRegions = mergedRegions(std::move(missed), U, E);
     stats.slopesAsWedges += plane.represented;
     all = all && plane.represented;
   }
@@ -350,10 +386,8 @@ std::vector<Builder::MeshPiece> Builder::meshPieces(std::uint32_t f) const {
   const Face& face = faces[f];
   if (face.kind != FaceKind::Slope || face.area <= 0) return out;
   const SlopePlane& plane = slopes[static_cast<std::size_t>(face.group)];
-  if (!plane.represented || (plane.partial.empty() && plane.failed.empty())) return out;
+  if (!plane.represented || plane.meshRegions.empty()) return out;
   const int e = plane.e, u = kU[e], v = kV[e];
-  const auto& U = bounds[static_cast<std::size_t>(u)];
-  const auto& E = bounds[static_cast<std::size_t>(e)];
   const dvec3 P[3] = {corner(f, 0), corner(f, 1), corner(f, 2)};
   Polygon2 tri;
   tri.n = 3;
@@ -365,34 +399,29 @@ std::vector<Builder::MeshPiece> Builder::meshPieces(std::uint32_t f) const {
   // The face's own plane lifts the pieces back to 3D (its normal is off v by more than the angle tolerance).
   const dvec3 normal = face.areaVector / face.area;
   const double d = glm::dot(normal, P[0]);
-  constexpr double kAll = std::numeric_limits<double>::infinity();
-  for (const auto* cells : {&plane.partial, &plane.failed})
-    for (const auto& [i, k] : *cells) {
-      const double ua = U[static_cast<std::size_t>(i)], ub = U[static_cast<std::size_t>(i + 1)];
-      // e cell -1: the whole column failed.
-      const double ea = k < 0 ? -kAll : E[static_cast<std::size_t>(k)], eb = k < 0 ? kAll : E[static_cast<std::size_t>(k + 1)];
-      if (ub <= uLo || ua >= uHi || eb <= eLo || ea >= eHi) continue;
-      Polygon2 piece = tri;
-      clipAxis(piece, 0, ua, false);
-      clipAxis(piece, 0, ub, true);
-      clipAxis(piece, 1, ea, false);
-      clipAxis(piece, 1, eb, true);
-      MeshPiece m;
-      m.area = polygonArea(piece) / projected * face.area;
-      if (piece.n < 3 || m.area <= kMinPieceAreaM2) continue;  // a clipping sliver
-      for (int c = 0; c < piece.n; ++c) {
-        // A corner on a cell's side comes out of clipping twice, or nearly: once is enough.
-        const dvec2 at = piece.p[static_cast<std::size_t>(c)];
-        const dvec3& last = m.p[static_cast<std::size_t>(std::max(m.n - 1, 0))];
-        if (m.n > 0 && glm::length(at - dvec2(last[u], last[e])) <= 1e-9) continue;
-        dvec3& q = m.p[static_cast<std::size_t>(m.n++)];
-        q[u] = at.x;
-        q[e] = at.y;
-        q[v] = (d - normal[u] * q[u] - normal[e] * q[e]) / normal[v];
-      }
-      while (m.n > 1 && glm::length(m.p[static_cast<std::size_t>(m.n - 1)] - m.p[0]) <= 1e-9) --m.n;
-      if (m.n >= 3) out.push_back(m);
+  for (const SlopePlane::Region& r : plane.meshRegions) {
+    if (r.u1 <= uLo || r.u0 >= uHi || r.e1 <= eLo || r.e0 >= eHi) continue;
+    Polygon2 piece = tri;
+    clipAxis(piece, 0, r.u0, false);
+    clipAxis(piece, 0, r.u1, true);
+    clipAxis(piece, 1, r.e0, false);
+    clipAxis(piece, 1, r.e1, true);
+    MeshPiece m;
+    m.area = polygonArea(piece) / projected * face.area;
+    if (piece.n < 3 || m.area <= kMinPieceAreaM2) continue;  // a clipping sliver
+    for (int c = 0; c < piece.n; ++c) {
+      // A corner on a cell's side comes out of clipping twice, or nearly: once is enough.
+      const dvec2 at = piece.p[static_cast<std::size_t>(c)];
+      const dvec3& last = m.p[static_cast<std::size_t>(std::max(m.n - 1, 0))];
+      if (m.n > 0 && glm::length(at - dvec2(last[u], last[e])) <= 1e-9) continue;
+      dvec3& q = m.p[static_cast<std::size_t>(m.n++)];
+      q[u] = at.x;
+      q[e] = at.y;
+      q[v] = (d - normal[u] * q[u] - normal[e] * q[e]) / normal[v];
     }
+    while (m.n > 1 && glm::length(m.p[static_cast<std::size_t>(m.n - 1)] - m.p[0]) <= 1e-9) --m.n;
+    if (m.n >= 3) out.push_back(m);
+  }
   return out;
 }
 
