@@ -220,6 +220,13 @@ struct Polygon2 {
 // Keeps the part with coordinate `axis` below (keepBelow) or above `bound` (Sutherland-Hodgman).
 void clipAxis(Polygon2& poly, int axis, double bound, bool keepBelow);
 double polygonArea(const Polygon2& poly);
+// Cells i0..i1 by j0..j1 of a plane, and cells (i, j), sorted by i then j, joined into such
+// rectangles: runs of consecutive j in one column, and a run continued by the same run in the
+// next column (solid_materials.cpp).
+struct CellRectangle {
+  int i0, i1, j0, j1;
+};
+std::vector<CellRectangle> joinCells(const std::vector<std::array<int, 2>>& cells);
 
 // Whether a triangle overlaps an axis-aligned box, by the separating-axis test (solid_occupancy.cpp).
 bool triangleOverlapsBox(dvec3 a, dvec3 b, dvec3 c, const dvec3& centre, const dvec3& half);

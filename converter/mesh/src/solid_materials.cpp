@@ -52,13 +52,6 @@ double polygonArea(const Polygon2& poly) {
   return 0.5 * std::abs(twice);
 }
 
-namespace {
-
-// Cells i0..i1 by j0..j1 of a face's plane.
-struct CellRectangle {
-  int i0, i1, j0, j1;
-};
-
 // Joins cells (i, j), sorted by i then j as the face loop finds them, into rectangles: runs of
 // consecutive j in one column, and a run continued by the same run in the next column.
 std::vector<CellRectangle> joinCells(const std::vector<std::array<int, 2>>& cells) {
@@ -91,8 +84,6 @@ std::vector<CellRectangle> joinCells(const std::vector<std::array<int, 2>>& cell
   }
   return out;
 }
-
-}  // namespace
 
 // Clips every axis-aligned face against the cell faces it covers (step 4 of solid.hpp). Where
 // exactly one side is solid, that cell gets a share of the face's area for the face's material

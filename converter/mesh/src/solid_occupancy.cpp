@@ -6,7 +6,6 @@
 #include <cmath>
 #include <limits>
 #include <numeric>
-#include <tuple>
 
 #include <glm/geometric.hpp>
 
@@ -197,40 +196,6 @@ void Builder::classify(const LazyWinding& winding) {
   stats.columns = static_cast<long long>(columns);
 }
 
-namespace {
-
-// The cells (u cell, e cell; e cell -1 for a whole column) as few rectangles: runs along e, then
-// runs of equal e spans along u.
-std::vector<SlopePlane::Region> mergedRegions(std::vector<std::pair<int, int>> cells, const std::vector<double>& U,
-                                              const std::vector<double>& E) {
-  std::sort(cells.begin(), cells.end());
-  struct Run {
-    int k0, k1, i;
-  };
-  std::vector<Run> runs;
-  for (const auto& [i, k] : cells) {
-    if (!runs.empty() && runs.back().i == i && runs.back().k1 + 1 == k && k >= 0) ++runs.back().k1;
-    else runs.push_back({k, k, i});
-  }
-  std::sort(runs.begin(), runs.end(), [](const Run& a, const Run& b) {
-    return std::tie(a.k0, a.k1, a.i) < std::tie(b.k0, b.k1, b.i);
-  });
-  constexpr double kAll = std::numeric_limits<double>::infinity();
-  std::vector<SlopePlane::Region> out;
-  for (std::size_t r = 0; r < runs.size();) {
-    std::size_t next = r + 1;
-    while (next < runs.size() && runs[next].k0 == runs[r].k0 && runs[next].k1 == runs[r].k1 && runs[next].i == runs[next - 1].i + 1) ++next;
-    const Run& first = runs[r];
-    out.push_back({U[static_cast<std::size_t>(first.i)], U[static_cast<std::size_t>(runs[next - 1].i + 1)],
-                   first.k0 < 0 ? -kAll : E[static_cast<std::size_t>(first.k0)],
-                   first.k0 < 0 ? kAll : E[static_cast<std::size_t>(first.k1 + 1)]});
-    r = next;
-  }
-  return out;
-}
-
-}  // namespace
-
 // Cells a slope runs through corner to corner become wedges (or stay boxes / empty when both
 // halves are solid / empty); a slope shown entirely by wedges leaves the complementary mesh.
 // A cell becomes a wedge of a plane only where the plane's faces cover its whole extent in (u, e)
@@ -296,7 +261,7 @@ bool Builder::fitWedges(const LazyWinding& winding) {
       badArea += area;
     };
     plane.meshRegions.clear();
-    std::vector<std::pair<int, int>> missed;  // cells (u, e) with no wedge whose faces the mesh shows
+    std::vector<std::array<int, 2>> missed;  // cells (u, e) with no wedge, e = -1 for a whole column
     for (int i = i0; i <= i1 && bad <= good + kWedgeGiveUp; ++i) {
       const double ua = U[static_cast<std::size_t>(i)], ub = U[static_cast<std::size_t>(i + 1)];
       const double va = plane.vAt(ua), vb = plane.vAt(ub);
@@ -374,7 +339,12 @@ bool Builder::fitWedges(const LazyWinding& winding) {
     // in a few wide cells between many narrow wedges: more than half of its cross-section.)
     plane.represented = good > 0 && bad <= good + kWedgeGiveUp &&
                         (options.partialWedges ? bad <= good && badArea <= goodArea : bad == 0);
-    if (plane.represented) plane.meshRegions = mergedRegions(std::move(missed), U, E);
+    // The faces over those cells go to the mesh as few pieces: cells joined into rectangles.
+    constexpr double kAll = std::numeric_limits<double>::infinity();
+    if (plane.represented)
+      for (const CellRectangle& r : joinCells(missed))
+        plane.meshRegions.push_back({U[static_cast<std::size_t>(r.i0)], U[static_cast<std::size_t>(r.i1 + 1)],
+                                     r.j0 < 0 ? -kAll : E[static_cast<std::size_t>(r.j0)], r.j0 < 0 ? kAll : E[static_cast<std::size_t>(r.j1 + 1)]});
     stats.slopesAsWedges += plane.represented;
     all = all && plane.represented;
   }
