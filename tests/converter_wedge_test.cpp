@@ -389,9 +389,10 @@ TEST(Wedges, GableRoofIsAllWedges) {
 // cell it grew with every chimney: 80 and 96 triangles).
 TEST(Wedges, AnOverhangGoesToTheMeshInPiecesThatDoNotMultiplyWithTheCells) {
   const double overhang = 2 * (11.0 * 4.5 - 10.0 * 4.0) * 1.25;
+  const std::array<int, 2> chimneys{3, 5};
   std::array<int, 2> triangles{}, cellsAlongX{};
-  for (const int chimneys : {3, 5}) {
-    const Mesh mesh = overhangingGableRoof(chimneys);
+  for (std::size_t n = 0; n < chimneys.size(); ++n) {
+    const Mesh mesh = overhangingGableRoof(chimneys[n]);
     writeObj(mesh);
     const Conversion c = testing::convertOrFail(mesh);
     const Figures f = measure(mesh, c, {}, mesh.name);
@@ -399,8 +400,8 @@ TEST(Wedges, AnOverhangGoesToTheMeshInPiecesThatDoNotMultiplyWithTheCells) {
     EXPECT_EQ(c.report.solid.slopesAsWedges, 2) << mesh.name;
     EXPECT_NEAR(f.meshArea, overhang, 0.01 * overhang) << mesh.name;
     EXPECT_EQ(f.meshWallTriangles, 0) << mesh.name;
-    triangles[chimneys == 3 ? 0 : 1] = f.meshTriangles;
-    cellsAlongX[chimneys == 3 ? 0 : 1] = c.report.solid.cells[0];
+    triangles[n] = f.meshTriangles;
+    cellsAlongX[n] = c.report.solid.cells[0];
   }
   EXPECT_GE(cellsAlongX[1], cellsAlongX[0] + 4);  // the two more chimneys do cut the eaves
   EXPECT_EQ(triangles[1], triangles[0]);
