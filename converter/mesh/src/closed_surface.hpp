@@ -8,21 +8,36 @@
 // ones), so the edges that do not cancel between their own two vertices are gathered per
 // supporting line, and the surface is open only where their runs along a line do not cancel
 // either (a roof sheet overhanging its gable, a pane filling a wall's hole, walls standing on a
-// base plate without a floor of their own).
+// base plate without a floor of their own). Vertices a millimetre apart are one place and a
+// T-junction's vertex may lie up to a millimetre off the edge it meets: a mesh turned or written
+// with few decimals has them a little off.
 #pragma once
 
+#include <algorithm>
+#include <cstdint>
 #include <span>
+#include <vector>
 
 #include <glm/vec3.hpp>
 
 namespace nut::converter {
 
-// An edge from a to b that the faces using it run `weight` more times a -> b than b -> a.
+// An edge between vertices a and b (indices into the mesh's points) that the faces using it run
+// `weight` more times a -> b than b -> a.
 struct UncancelledEdge {
-  glm::dvec3 a, b;
+  std::uint32_t a, b;
   int weight;
 };
 
-bool cancelAlongLines(std::span<const UncancelledEdge> edges);
+// The edges grouped into chains of collinear edges meeting end to end, one or more per line.
+struct LineChains {
+  static constexpr std::uint32_t kNone = 0xffffffffu;
+  std::vector<std::uint32_t> chainOfEdge;  // kNone for an edge shorter than a place
+  std::vector<std::uint8_t> cancels;       // per chain: its runs sum to zero all along it
+  // The surface is closed when every chain cancels.
+  bool allCancel() const { return std::find(cancels.begin(), cancels.end(), 0) == cancels.end(); }
+};
+
+LineChains chainsAlongLines(std::span<const glm::dvec3> points, std::span<const UncancelledEdge> edges);
 
 }  // namespace nut::converter

@@ -264,13 +264,6 @@ MeshCheck checkAndRepair(Mesh& mesh) {
       for (std::size_t k = i; k < j; ++k) open[uses[k].face] = 1;
     }
   });
-  std::vector<std::uint32_t> root(w.triangles.size());
-  std::unordered_map<std::uint32_t, std::size_t> pieceIndex;
-  for (std::size_t f = 0; f < w.triangles.size(); ++f) {
-    root[f] = pieces.find(static_cast<std::uint32_t>(f));
-    pieceIndex.try_emplace(root[f], pieceIndex.size());
-  }
-  check.components = pieceIndex.size();
   struct Piece {
     double area = 0;
     dvec3 weightedCentre{0.0};
@@ -278,23 +271,35 @@ MeshCheck checkAndRepair(Mesh& mesh) {
     double turnedArea = 0;  // area of faces the consistency repair turned over
     bool open = false;
   };
-  std::vector<Piece> info(pieceIndex.size());
-  for (std::size_t f = 0; f < w.triangles.size(); ++f) {
-    const auto& t = w.triangles[f];
-    const dvec3 &a = w.points[t[0]], &b = w.points[t[1]], &c = w.points[t[2]];
-    const double area = 0.5 * glm::length(glm::cross(b - a, c - a));
-    Piece& p = info[pieceIndex[root[f]]];
-    p.area += area;
-    p.weightedCentre += area * (a + b + c) / 3.0;
-    p.turnedArea += flipped[f] ? area : 0.0;
-    p.open = p.open || open[f];
-  }
-  for (std::size_t f = 0; f < w.triangles.size(); ++f) {
-    Piece& p = info[pieceIndex[root[f]]];
-    const dvec3 centre = p.weightedCentre / p.area;  // the volume of a closed piece does not depend on it
-    const auto& t = w.triangles[f];
-    p.volume += glm::dot(w.points[t[0]] - centre, glm::cross(w.points[t[1]] - centre, w.points[t[2]] - centre)) / 6.0;
-  }
+  std::vector<std::uint32_t> root(w.triangles.size());
+  std::unordered_map<std::uint32_t, std::size_t> pieceIndex;
+  std::vector<Piece> info;
+  const auto describePieces = [&] {
+    pieceIndex.clear();
+    for (std::size_t f = 0; f < w.triangles.size(); ++f) {
+      root[f] = pieces.find(static_cast<std::uint32_t>(f));
+      pieceIndex.try_emplace(root[f], pieceIndex.size());
+    }
+    info.assign(pieceIndex.size(), Piece{});
+    for (std::size_t f = 0; f < w.triangles.size(); ++f) {
+      const auto& t = w.triangles[f];
+      const dvec3 &a = w.points[t[0]], &b = w.points[t[1]], &c = w.points[t[2]];
+      const double area = 0.5 * glm::length(glm::cross(b - a, c - a));
+      Piece& p = info[pieceIndex[root[f]]];
+      p.area += area;
+      p.weightedCentre += area * (a + b + c) / 3.0;
+      p.turnedArea += flipped[f] ? area : 0.0;
+      p.open = p.open || open[f];
+    }
+    for (std::size_t f = 0; f < w.triangles.size(); ++f) {
+      Piece& p = info[pieceIndex[root[f]]];
+      const dvec3 centre = p.weightedCentre / p.area;  // the volume of a closed piece does not depend on it
+      const auto& t = w.triangles[f];
+      p.volume += glm::dot(w.points[t[0]] - centre, glm::cross(w.points[t[1]] - centre, w.points[t[2]] - centre)) / 6.0;
+    }
+  };
+  describePieces();
+  check.components = info.size();
   // A closed piece faces outwards when its volume is positive. An open one has no inside to go
   // by (a roof tray between parapets has a negative volume and is right), so it keeps the
   // orientation most of its area came with, until the whole mesh says otherwise (below).
@@ -310,29 +315,55 @@ MeshCheck checkAndRepair(Mesh& mesh) {
   }
 
   // Closed surface: what the repaired faces leave uncancelled on an edge cancels along its line.
-  const auto isClosedSurface = [&] {
+  std::vector<std::size_t> firstUse;  // of each uncancelled edge, in `uses`
+  const auto chainsOfUncancelled = [&] {
     std::vector<UncancelledEdge> uncancelled;
+    firstUse.clear();
     forEachEdge(uses, [&](std::size_t i, std::size_t j) {
       int weight = 0;
       for (std::size_t k = i; k < j; ++k) weight += uses[k].forward != (turnedOut[uses[k].face] != 0) ? 1 : -1;
-      if (weight != 0) uncancelled.push_back({w.points[uses[i].key >> 32], w.points[uses[i].key & 0xffffffffu], weight});
+      if (weight == 0) return;
+      uncancelled.push_back({static_cast<std::uint32_t>(uses[i].key >> 32), static_cast<std::uint32_t>(uses[i].key & 0xffffffffu), weight});
+      firstUse.push_back(i);
     });
-    return cancelAlongLines(uncancelled);
+    return chainsAlongLines(w.points, uncancelled);
   };
-  check.closedSurface = isClosedSurface();
+  const LineChains chains = chainsOfUncancelled();
+  check.closedSurface = chains.allCancel();
 
   // Inside must be w >= 1/2 everywhere: the occupancy step keeps the sign, since outside an open
   // mesh seen through its missing side w reaches -1/2 (in front of a roof whose walls behind it
   // are missing). A closed surface agrees with itself along every line, so its volume says which
-  // way the whole faces; an open mesh is asked piece by piece.
+  // way its open pieces face (the closed ones were turned by their own volumes above, and since
+  // each cancels on its own, the open ones together are a closed surface too); an open mesh is
+  // asked piece by piece.
   if (check.closedSurface) {
     const dvec3 centre = w.points.empty() ? dvec3(0.0) : w.points.front();
     double volume = 0;
-    for (const auto& t : w.triangles)
+    for (std::size_t f = 0; f < w.triangles.size(); ++f) {
+      if (!info[pieceIndex[root[f]]].open) continue;
+      const auto& t = w.triangles[f];
       volume += glm::dot(w.points[t[0]] - centre, glm::cross(w.points[t[1]] - centre, w.points[t[2]] - centre));
+    }
     if (volume < 0)
-      for (std::size_t f = 0; f < w.triangles.size(); ++f) turnOut(f);
+      for (std::size_t f = 0; f < w.triangles.size(); ++f)
+        if (info[pieceIndex[root[f]]].open) turnOut(f);
   } else {
+    // Open pieces meeting along a line where their edges cancel face the same way, as the faces
+    // of a piece do across its edges: they are asked as one (the floors and walls of a car park
+    // that meet at T-junctions, with one hole somewhere, are one piece, which the winding number
+    // finds facing out; asked alone, a floor's piece may see through the slab).
+    std::vector<std::uint32_t> faceOfChain(chains.cancels.size(), LineChains::kNone);
+    for (std::size_t e = 0; e < firstUse.size(); ++e) {
+      const std::uint32_t c = chains.chainOfEdge[e];
+      if (c == LineChains::kNone || !chains.cancels[c]) continue;
+      std::uint32_t& face = faceOfChain[c];
+      for (std::size_t k = firstUse[e]; k < uses.size() && uses[k].key == uses[firstUse[e]].key; ++k) {
+        if (face == LineChains::kNone) face = uses[k].face;
+        pieces.unite(face, uses[k].face);
+      }
+    }
+    describePieces();
     double totalArea = 0;
     for (const Piece& p : info) totalArea += p.area;
     // The faces of each piece that `ask` picks (empty for the others).
@@ -356,7 +387,7 @@ MeshCheck checkAndRepair(Mesh& mesh) {
     for (const Piece& p : info) pieceArea.push_back(p.area);
     turnPieces(smallPiecesFacingIn(w, facesOfPieces([&](const Piece& p) { return p.open && p.area < kFarPieceMaxShare * totalArea; }),
                                    pieceArea));
-    if (turned) check.closedSurface = isClosedSurface();  // pieces facing each other's way may now close it
+    if (turned) check.closedSurface = chainsOfUncancelled().allCancel();  // pieces facing each other's way may now close it
   }
   check.flippedTriangles = static_cast<std::size_t>(std::count(flipped.begin(), flipped.end(), 1));
   return check;

@@ -39,11 +39,12 @@ struct MeshCheck {
 // Checks `mesh` and repairs it in place: removes degenerate triangles, orients every connected
 // piece consistently, and turns closed pieces outwards (positive signed volume); an open piece
 // keeps the orientation most of its area had. Then decides whether the repaired mesh is a closed
-// surface, and turns it whole if that surface has a negative volume; on an open mesh, an open
-// piece that the winding number on either side of its faces finds facing into the solid is
-// turned, and then each small open piece (below 1 % of the area: a window pane) whose front the
-// rest of the mesh, half the piece's size out, finds more inside than its back. Inside is then
-// w >= 1/2 everywhere. Positions and materials are kept.
+// surface (closed_surface.hpp), and turns its open pieces if together they have a negative
+// volume. On an open mesh, open pieces meeting along lines where their edges cancel are taken as
+// one; an open piece that the winding number on either side of its faces finds facing into the
+// solid is turned, and then each small open piece (below 1 % of the area: a window pane) whose
+// front the rest of the mesh, half the piece's size out, finds more inside than its back. Inside
+// is then w >= 1/2 everywhere. Positions and materials are kept.
 MeshCheck checkAndRepair(Mesh& mesh);
 
 }  // namespace nut::converter
