@@ -115,12 +115,19 @@ LineChains chainsAlongLines(std::span<const dvec3> points, std::span<const Uncan
         if (distanceToLine(at(shorter ^ 1), at(longer), at(longer ^ 1)) <= kSamePlaceM) chains.unite(longer / 2, shorter / 2);
       }
 
-  // Each chain, along its longest edge: the weight its runs start at each place, summed in order.
+  // Each chain, along its longest edge: the runs as intervals with a weight along it, swept in
+  // order; between two places the weights of the runs there must sum to zero.
   LineChains out;
-  out.chainOfEdge.assign(edges.size(), LineChains::kNone);
   const auto [byChain, chainStart] = byKey(edges.size(), edges.size(), [&](std::uint32_t e) { return chains.find(e); });
-  std::vector<int> change(points.size(), 0);            // by place, for the chain at hand
-  std::vector<std::pair<double, std::uint32_t>> order;  // (position along the chain, place)
+  struct Event {
+    double at;
+    bool starts;
+    std::uint32_t edge;
+    int weight;  // along the chain
+    bool operator<(const Event& o) const { return at < o.at || (at == o.at && starts && !o.starts); }
+  };
+  std::vector<Event> events;
+  std::vector<Event> covering;  // the runs over the stretch swept
   for (std::size_t c = 0; c < edges.size(); ++c) {
     const std::span<const std::uint32_t> chain(byChain.data() + chainStart[c], chainStart[c + 1] - chainStart[c]);
     std::uint32_t longest = 0;
@@ -133,27 +140,33 @@ LineChains chainsAlongLines(std::span<const dvec3> points, std::span<const Uncan
     if (longestLength < 0) continue;
     const dvec3& origin = at(2 * longest);
     const dvec3 d = glm::normalize(at(2 * longest + 1) - origin);
-    order.clear();
+    events.clear();
     for (std::uint32_t e : chain) {
       if (!runs(e)) continue;
-      out.chainOfEdge[e] = static_cast<std::uint32_t>(out.cancels.size());
-      // A run from a to b with weight w changes the sum along d by +w at a and -w at b, whichever
-      // of the two comes first.
-      for (const std::uint32_t end : {2 * e, 2 * e + 1}) {
-        const std::uint32_t p = placeOfEnd(end);
-        change[p] += end % 2 ? -edges[e].weight : edges[e].weight;
-        order.emplace_back(glm::dot(points[p] - origin, d), p);
-      }
+      const double a = glm::dot(at(2 * e) - origin, d), b = glm::dot(at(2 * e + 1) - origin, d);
+      const int weight = a < b ? edges[e].weight : -edges[e].weight;
+      events.push_back({std::min(a, b), true, e, weight});
+      events.push_back({std::max(a, b), false, e, weight});
     }
-    std::sort(order.begin(), order.end());
-    order.erase(std::unique(order.begin(), order.end()), order.end());
-    int sum = 0;
+    std::sort(events.begin(), events.end());
+    covering.clear();
     bool cancels = true;
-    for (std::size_t i = 0; i + 1 < order.size(); ++i) {
-      sum += change[order[i].second];
+    for (std::size_t i = 0; i < events.size();) {
+      // Ends of runs at one place (one position: the place's point projected) are taken together.
+      const double here = events[i].at;
+      for (; i < events.size() && events[i].at == here; ++i) {
+        if (events[i].starts)
+          covering.push_back(events[i]);
+        else
+          std::erase_if(covering, [&](const Event& r) { return r.edge == events[i].edge; });
+      }
+      if (i == events.size()) break;
+      int sum = 0;
+      for (const Event& r : covering) sum += r.weight;
       cancels = cancels && sum == 0;
+      if (covering.size() == 2)
+        out.alone.push_back({covering[0].edge, covering[1].edge, (covering[0].weight > 0) == (covering[1].weight > 0)});
     }
-    for (const auto& [position, p] : order) change[p] = 0;
     out.cancels.push_back(cancels ? 1 : 0);
   }
   return out;

@@ -31,9 +31,14 @@ struct UncancelledEdge {
 
 // The edges grouped into chains of collinear edges meeting end to end, one or more per line.
 struct LineChains {
-  static constexpr std::uint32_t kNone = 0xffffffffu;
-  std::vector<std::uint32_t> chainOfEdge;  // kNone for an edge shorter than a place
-  std::vector<std::uint8_t> cancels;       // per chain: its runs sum to zero all along it
+  std::vector<std::uint8_t> cancels;  // per chain: its runs sum to zero all along it
+  // Two edges that alone cover a stretch of their line: they cancel there if they run opposite
+  // ways, so the faces using them agree, or would if one were turned over (sameWay).
+  struct Pair {
+    std::uint32_t a, b;
+    bool sameWay;
+  };
+  std::vector<Pair> alone;
   // The surface is closed when every chain cancels.
   bool allCancel() const { return std::find(cancels.begin(), cancels.end(), 0) == cancels.end(); }
 };

@@ -39,6 +39,7 @@ constexpr double kSidePieceMinShare = 0.001;
 // the mesh farther out on either side, if they hold at most this share of the area.
 constexpr double kFarPieceMaxShare = 0.01;
 constexpr double kFarSampleMinM = 0.05, kFarSampleMaxM = 1.0;
+constexpr std::uint32_t kNoFace = 0xffffffffu;
 
 // Whether b is a cyclic rotation of a (same orientation) or of a reversed (flipped).
 enum class Turn { Same, Flipped, Other };
@@ -328,8 +329,44 @@ MeshCheck checkAndRepair(Mesh& mesh) {
     });
     return chainsAlongLines(w.points, uncancelled);
   };
-  const LineChains chains = chainsOfUncancelled();
+  LineChains chains = chainsOfUncancelled();
   check.closedSurface = chains.allCancel();
+
+  // Open pieces meeting along a line agree where two of their edges alone cover a stretch of it
+  // and run opposite ways (as two faces agree across a manifold edge). Where the mesh is not a
+  // closed surface yet, the pieces are made to agree, the smaller area of each group turning (a
+  // floor's quad turned over among the car park's T-junctions), and the groups are asked as one
+  // below: a floor's piece asked alone may see through its slab.
+  ParityUnionFind agree(info.size());
+  if (!check.closedSurface) {
+    const auto pieceOf = [&](std::size_t e) -> std::optional<std::size_t> {  // of the one face using edge e
+      const std::size_t i = firstUse[e];
+      if (i + 1 < uses.size() && uses[i + 1].key == uses[i].key) return std::nullopt;
+      return pieceIndex[root[uses[i].face]];
+    };
+    for (const LineChains::Pair& pair : chains.alone) {
+      const auto a = pieceOf(pair.a), b = pieceOf(pair.b);
+      if (a && b && *a != *b) agree.unite(static_cast<std::uint32_t>(*a), static_cast<std::uint32_t>(*b), pair.sameWay);
+    }
+    std::vector<double> areaTurned(info.size(), 0), areaKept(info.size(), 0);  // per group's root
+    for (std::uint32_t p = 0; p < info.size(); ++p) {
+      const auto [group, turn] = agree.find(p);
+      (turn ? areaTurned : areaKept)[group] += info[p].area;
+    }
+    bool turned = false;
+    for (std::size_t f = 0; f < w.triangles.size(); ++f) {
+      const auto [group, turn] = agree.find(static_cast<std::uint32_t>(pieceIndex[root[f]]));
+      const bool minority = turn ? areaTurned[group] <= areaKept[group] : areaKept[group] < areaTurned[group];
+      if (minority) {
+        turnOut(f);
+        turned = true;
+      }
+    }
+    if (turned) {
+      chains = chainsOfUncancelled();
+      check.closedSurface = chains.allCancel();
+    }
+  }
 
   // Inside must be w >= 1/2 everywhere: the occupancy step keeps the sign, since outside an open
   // mesh seen through its missing side w reaches -1/2 (in front of a roof whose walls behind it
@@ -349,19 +386,11 @@ MeshCheck checkAndRepair(Mesh& mesh) {
       for (std::size_t f = 0; f < w.triangles.size(); ++f)
         if (info[pieceIndex[root[f]]].open) turnOut(f);
   } else {
-    // Open pieces meeting along a line where their edges cancel face the same way, as the faces
-    // of a piece do across its edges: they are asked as one (the floors and walls of a car park
-    // that meet at T-junctions, with one hole somewhere, are one piece, which the winding number
-    // finds facing out; asked alone, a floor's piece may see through the slab).
-    std::vector<std::uint32_t> faceOfChain(chains.cancels.size(), LineChains::kNone);
-    for (std::size_t e = 0; e < firstUse.size(); ++e) {
-      const std::uint32_t c = chains.chainOfEdge[e];
-      if (c == LineChains::kNone || !chains.cancels[c]) continue;
-      std::uint32_t& face = faceOfChain[c];
-      for (std::size_t k = firstUse[e]; k < uses.size() && uses[k].key == uses[firstUse[e]].key; ++k) {
-        if (face == LineChains::kNone) face = uses[k].face;
-        pieces.unite(face, uses[k].face);
-      }
+    std::vector<std::uint32_t> faceOfGroup(info.size(), kNoFace);
+    for (std::uint32_t f = 0; f < w.triangles.size(); ++f) {
+      std::uint32_t& first = faceOfGroup[agree.find(static_cast<std::uint32_t>(pieceIndex[root[f]])).first];
+      if (first == kNoFace) first = f;
+      pieces.unite(first, f);
     }
     describePieces();
     double totalArea = 0;
