@@ -12,7 +12,9 @@
 #include <cstdio>
 #include <filesystem>
 #include <numbers>
+#include <random>
 #include <utility>
+#include <vector>
 
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>
@@ -109,7 +111,9 @@ INSTANTIATE_TEST_SUITE_P(Fixtures, SampleFidelity,
 // inwards (96.87 % in its worst view); before open pieces meeting along a line were made to agree
 // and asked as one, the one missing a triangle fared the same (95.08 %), and the floor's quad,
 // which meets the rest only at T-junctions, stayed turned over; before a closed surface's volume
-// turned only its open pieces, the one turned over kept 120 faces of its closed pieces facing in.
+// turned only its open pieces, the one turned over kept 120 faces of its closed pieces facing in;
+// and with every triangle's corners its own, up to 2 µm from its neighbours', each triangle was a
+// piece asked alone and 847 were turned in (93.89 %).
 enum class TurnedOver { Nothing, LargestQuad, Everything };
 
 struct Handling {
@@ -118,6 +122,7 @@ struct Handling {
   int decimals;  // positions rounded to this many decimals of a metre
   bool missingTriangle;
   TurnedOver turned;
+  bool unwelded = false;  // every triangle with its own copies of its corners, each moved by up to 2 µm
 };
 
 // The largest triangle and the one across its longest edge.
@@ -152,6 +157,17 @@ TEST_P(HandedOver, ConvertsAsWellAsTheSample) {
     p = {p.x * std::cos(turn) + p.z * std::sin(turn), p.y, -p.x * std::sin(turn) + p.z * std::cos(turn)};
     p = glm::round(p * scale) / scale;
   }
+  if (h.unwelded) {
+    std::mt19937 random(1);
+    std::uniform_real_distribution<double> jitter(-2e-6, 2e-6);
+    std::vector<glm::dvec3> copies;
+    for (auto& t : mesh.triangles)
+      for (std::uint32_t& corner : t) {
+        copies.push_back(mesh.positions[corner] + glm::dvec3(jitter(random), jitter(random), jitter(random)));
+        corner = static_cast<std::uint32_t>(copies.size() - 1);
+      }
+    mesh.positions = std::move(copies);
+  }
   if (h.missingTriangle) {  // the outside of a parapet stripe
     mesh.triangles.erase(mesh.triangles.begin());
     mesh.triangleMaterial.erase(mesh.triangleMaterial.begin());
@@ -179,7 +195,8 @@ INSTANTIATE_TEST_SUITE_P(CarPark, HandedOver,
                                            Handling{"missing_a_triangle", 0, 6, true, TurnedOver::Nothing},
                                            Handling{"turned_37deg_missing_a_triangle", 37, 6, true, TurnedOver::Nothing},
                                            Handling{"a_floor_turned_over", 0, 6, false, TurnedOver::LargestQuad},
-                                           Handling{"turned_over", 0, 6, false, TurnedOver::Everything}));
+                                           Handling{"turned_over", 0, 6, false, TurnedOver::Everything},
+                                           Handling{"unwelded_2um_apart", 0, 6, false, TurnedOver::Nothing, true}));
 
 // The external meshes are real models with open shells, tilted faces and non-axis-aligned parts:
 // their figures are printed (docs/CONVERTER.md) and held to a looser bar. (Zurich's 49 buildings
