@@ -150,7 +150,6 @@ LineChains chainsAlongLines(std::span<const dvec3> points, std::span<const Uncan
     }
     std::sort(events.begin(), events.end());
     covering.clear();
-    bool cancels = true;
     for (std::size_t i = 0; i < events.size();) {
       // Ends of runs at one place (one position: the place's point projected) are taken together.
       const double here = events[i].at;
@@ -163,11 +162,10 @@ LineChains chainsAlongLines(std::span<const dvec3> points, std::span<const Uncan
       if (i == events.size()) break;
       int sum = 0;
       for (const Event& r : covering) sum += r.weight;
-      cancels = cancels && sum == 0;
+      out.cancel = out.cancel && sum == 0;
       if (covering.size() == 2)
         out.alone.push_back({covering[0].edge, covering[1].edge, (covering[0].weight > 0) == (covering[1].weight > 0)});
     }
-    out.cancels.push_back(cancels ? 1 : 0);
   }
   return out;
 }

@@ -10,10 +10,10 @@
 // either (a roof sheet overhanging its gable, a pane filling a wall's hole, walls standing on a
 // base plate without a floor of their own). Vertices a millimetre apart are one place and a
 // T-junction's vertex may lie up to a millimetre off the edge it meets: a mesh turned or written
-// with few decimals has them a little off.
+// with few decimals has them a little off. Where two edges alone cover a stretch of a line, the
+// faces using them must run it opposite ways: the mesh check makes open pieces agree by them.
 #pragma once
 
-#include <algorithm>
 #include <cstdint>
 #include <span>
 #include <vector>
@@ -31,7 +31,8 @@ struct UncancelledEdge {
 
 // The edges grouped into chains of collinear edges meeting end to end, one or more per line.
 struct LineChains {
-  std::vector<std::uint8_t> cancels;  // per chain: its runs sum to zero all along it
+  // Every chain's runs sum to zero all along it: the surface is closed.
+  bool cancel = true;
   // Two edges that alone cover a stretch of their line: they cancel there if they run opposite
   // ways, so the faces using them agree, or would if one were turned over (sameWay).
   struct Pair {
@@ -39,8 +40,6 @@ struct LineChains {
     bool sameWay;
   };
   std::vector<Pair> alone;
-  // The surface is closed when every chain cancels.
-  bool allCancel() const { return std::find(cancels.begin(), cancels.end(), 0) == cancels.end(); }
 };
 
 LineChains chainsAlongLines(std::span<const glm::dvec3> points, std::span<const UncancelledEdge> edges);

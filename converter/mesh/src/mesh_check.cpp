@@ -330,7 +330,7 @@ MeshCheck checkAndRepair(Mesh& mesh) {
     return chainsAlongLines(w.points, uncancelled);
   };
   LineChains chains = chainsOfUncancelled();
-  check.closedSurface = chains.allCancel();
+  check.closedSurface = chains.cancel;
 
   // Open pieces meeting along a line agree where two of their edges alone cover a stretch of it
   // and run opposite ways (as two faces agree across a manifold edge). Where the mesh is not a
@@ -364,7 +364,7 @@ MeshCheck checkAndRepair(Mesh& mesh) {
     }
     if (turned) {
       chains = chainsOfUncancelled();
-      check.closedSurface = chains.allCancel();
+      check.closedSurface = chains.cancel;
     }
   }
 
@@ -386,6 +386,7 @@ MeshCheck checkAndRepair(Mesh& mesh) {
       for (std::size_t f = 0; f < w.triangles.size(); ++f)
         if (info[pieceIndex[root[f]]].open) turnOut(f);
   } else {
+    // Each group of pieces that agree (above) is one piece from here on.
     std::vector<std::uint32_t> faceOfGroup(info.size(), kNoFace);
     for (std::uint32_t f = 0; f < w.triangles.size(); ++f) {
       std::uint32_t& first = faceOfGroup[agree.find(static_cast<std::uint32_t>(pieceIndex[root[f]])).first];
@@ -416,7 +417,7 @@ MeshCheck checkAndRepair(Mesh& mesh) {
     for (const Piece& p : info) pieceArea.push_back(p.area);
     turnPieces(smallPiecesFacingIn(w, facesOfPieces([&](const Piece& p) { return p.open && p.area < kFarPieceMaxShare * totalArea; }),
                                    pieceArea));
-    if (turned) check.closedSurface = chainsOfUncancelled().allCancel();  // pieces facing each other's way may now close it
+    if (turned) check.closedSurface = chainsOfUncancelled().cancel;  // pieces facing each other's way may now close it
   }
   check.flippedTriangles = static_cast<std::size_t>(std::count(flipped.begin(), flipped.end(), 1));
   return check;
