@@ -325,17 +325,25 @@ TEST(Pyramids, OtherThreeAxisSlopesStayInTheComplementaryMesh) {
 
 // A chamfer 30 cm along each edge (0.08 m^2, 0.02 % of the surface) is a corner triangle, but like
 // a slope below 0.2 % of the surface it is not worth three boundaries across the whole grid: it
-// stays in the complementary mesh and the grid stays one cell (whose corner samples, 2 % of the
-// cell inside it, lie beyond the chamfer, so the cell stays solid and hides it: as before).
+// stays in the complementary mesh. The box's one cell, which the chamfer cuts, is not inside at its
+// corner sample beyond the chamfer, so it is trimmed; one boundary where the chamfer ends keeps the
+// rest of the box solid (Builder::proposeTrimSplits), and only the 30 cm slab beside the chamfer
+// goes to the mesh with it, across the box's smallest side (without that boundary the whole box
+// did).
 TEST(Pyramids, SmallChamferStaysInTheComplementaryMesh) {
   const Mesh mesh = chamferedBox({{7, {0.3, 0.3, 0.3}}}, "small_chamfer");
   const Conversion c = testing::convertOrFail(mesh);
   const SolidStats& s = c.report.solid;
-  std::printf("small chamfer: %d corner slopes, %lld pyramid cells, grid %d x %d x %d, complement %zu triangles\n", s.cornerSlopes,
-              s.pyramidCells, s.cells[0], s.cells[1], s.cells[2], c.complement.triangles.size());
+  std::printf("small chamfer: %d corner slopes, %lld pyramid cells, grid %d x %d x %d, complement %zu triangles, NUT %.2f %% of the surface\n",
+              s.cornerSlopes, s.pyramidCells, s.cells[0], s.cells[1], s.cells[2], c.complement.triangles.size(), 100 * s.nutAreaM2 / s.areaM2);
   EXPECT_EQ(s.cornerSlopes, 0);
   EXPECT_EQ(s.pyramidCells, 0);
-  EXPECT_EQ(s.cells, (std::array<int, 3>{1, 1, 1}));
+  EXPECT_EQ(s.trimBoundaries, 1);
+  EXPECT_EQ(s.trimmedCells, 1);
+  // The slab is 0.3 m of the 10 x 6 x 8 m box along x: its end (48 m^2) and 0.3 m strips of four
+  // sides (8.4 m^2) of the 376 m^2 go to the mesh.
+  EXPECT_EQ(s.cells, (std::array<int, 3>{2, 1, 1}));
+  EXPECT_NEAR(s.nutAreaM2, 376 - 48 - 8.4, 0.5);
   EXPECT_EQ(threeAxisFaces(c.complement), 1);
 }
 

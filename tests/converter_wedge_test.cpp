@@ -308,9 +308,10 @@ TEST(Wedges, HipRoofRendersLikeItsSource) {
 // With only slopes that are wedges everywhere (the converter's coarser fallback), every face of the
 // hip roof has cells its outline cuts, so all four are dropped and the grid is built again without
 // their boundaries: one cell (no face is horizontal at the eaves), which the roof, now in the
-// complementary mesh, cuts, so it is trimmed (it is not inside all over) and the walls go to the
-// mesh with it. Nothing is shown wrong: it renders like its source.
-TEST(Wedges, HipRoofWithoutPartialWedgesGoesToTheMesh) {
+// complementary mesh, cuts, so it is trimmed (it is not inside all over). A boundary at the eaves,
+// where the roof's faces end inside that cell, keeps the house below them solid: the walls stay
+// NUT cells and only the roof goes to the mesh (before that boundary the walls went with it).
+TEST(Wedges, HipRoofWithoutPartialWedgesLeavesTheRoofToTheMesh) {
   const Mesh mesh = hipRoof();
   ConvertOptions options;
   options.solid.partialWedges = false;
@@ -322,10 +323,12 @@ TEST(Wedges, HipRoofWithoutPartialWedgesGoesToTheMesh) {
   EXPECT_EQ(s.slopesAsWedges, 0);
   EXPECT_EQ(s.wedgeCells, 0);
   EXPECT_EQ(s.slopeBoundaries, 0);
-  EXPECT_EQ(s.cells, (std::array<int, 3>{1, 1, 1}));
-  EXPECT_EQ(s.trimmedCells, 1);
-  EXPECT_NEAR(s.complementAreaM2, s.areaM2, 1e-9 * s.areaM2);
-  EXPECT_NEAR(f.meshArea, s.areaM2, 1e-9 * s.areaM2);
+  EXPECT_EQ(s.trimBoundaries, 1);
+  EXPECT_EQ(s.cells, (std::array<int, 3>{1, 2, 1}));
+  EXPECT_EQ(s.trimmedCells, 1);  // the roof's cell, from the eaves to the ridge
+  EXPECT_NEAR(s.complementAreaM2, f.roofArea, 1e-9 * s.areaM2);
+  EXPECT_NEAR(f.meshArea, f.roofArea, 1e-9 * s.areaM2);
+  EXPECT_EQ(f.meshWallTriangles, 0);
 }
 
 TEST(Wedges, LShapedHipRoofWithAValleyRendersLikeItsSource) {
@@ -406,6 +409,29 @@ TEST(Wedges, AnOverhangGoesToTheMeshInPiecesThatDoNotMultiplyWithTheCells) {
   EXPECT_GE(cellsAlongX[1], cellsAlongX[0] + 4);  // the two more chimneys do cut the eaves
   EXPECT_EQ(triangles[1], triangles[0]);
   EXPECT_LE(triangles[0], 2 * 3 * 2 * 5);  // per pitch 3 rectangles, each over 2 faces, at most 5 triangles a piece
+}
+
+// Without chimneys nothing crosses the eaves, and each pitch has more cells where its sheet has no
+// inside (the eave, the overhanging gables) than wedges, so both are dropped and the roof goes to
+// the mesh whole. No face of the house ends at the eaves, so the house is then one cell up to the
+// ridge, which the roof cuts; it is trimmed, and a boundary where the roof's faces end inside it
+// (the eaves) keeps the house below solid. Before that boundary the whole house went to the mesh
+// and the HNI had no solid cell.
+TEST(Wedges, AHouseUnderAnOverhangingRoofLeftToTheMeshStaysSolid) {
+  const Mesh mesh = overhangingGableRoof(0);
+  writeObj(mesh);
+  const Conversion c = testing::convertOrFail(mesh);
+  const SolidStats& s = c.report.solid;
+  const Figures f = measure(mesh, c, {}, mesh.name);
+  EXPECT_GE(f.fidelity.worstWithinPct, 99.0) << "see converter_wedge/" << mesh.name << ".view*.diff.png";
+  EXPECT_EQ(s.slopesAsWedges, 0);
+  EXPECT_EQ(s.trimBoundaries, 1);
+  EXPECT_EQ(s.cells[1], 2);  // up to the eaves, and from there to the ridge
+  EXPECT_GE(s.solidCells, 1);
+  // The walls up to the eaves and the floor are NUT; the roof and the gables' triangles are mesh.
+  const double walls = 2 * 10.0 * kEaves + 2 * 8.0 * kEaves + 10.0 * 8.0;
+  EXPECT_NEAR(s.nutAreaM2, walls, 1e-6 * walls);
+  EXPECT_NEAR(f.meshArea, s.areaM2 - walls, 1e-6 * s.areaM2);
 }
 
 // Distance from q to triangle abc along its normal, when q's foot lies inside it; infinity when

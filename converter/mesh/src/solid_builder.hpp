@@ -70,6 +70,13 @@ constexpr double kCreaseMinStep = 8;
 // there would be ambiguous, and a face may lie up to a tolerance off its boundary. More would
 // let a tall cell poke through a roof (2 % of an 11.7 m storey hid a wall top 17 cm above it).
 constexpr double kCornerInset = 0.02, kCornerInsetTolerances = 2.0;
+// A cell trimCutCells empties proposes a boundary that splits off the part of it on one side of
+// what cuts it when that part is solid and at least this share of the cell (along the split axis)...
+constexpr double kTrimSplitShare = 0.25;
+// ...and when the parts one such boundary keeps have at least this share of the mesh's surface.
+constexpr double kTrimSplitShareOfSurface = 0.02;
+// Proposed splits this many tolerances apart are one (Builder::proposeTrimSplits).
+constexpr double kTrimSplitReach = 10;
 // Weight of a face that faces into the solid it bounds, against faces that face out.
 constexpr double kInnerFaceWeight = 0.01;
 
@@ -333,10 +340,20 @@ struct Builder {
     double area;
   };
   std::vector<Share> wedgeShares;  // filled by fitWedges and fitQuadrics
-  std::vector<Share> computeShares(Mesh& complement, SolidStats& area);
+  std::vector<Share> computeShares(Mesh& complement, SolidStats& area, std::vector<Share>& lost);
+  // Cells trimCutCells emptied, and the extent of the surface that cuts each (inside the cell).
+  struct CutExtent {
+    dvec3 lo{std::numeric_limits<double>::infinity()};
+    dvec3 hi{-std::numeric_limits<double>::infinity()};
+  };
+  std::unordered_map<std::size_t, CutExtent> trimmed;
+  // Boundaries that would keep the solid part of a trimmed cell, for the next build of the grid
+  // (solid_occupancy.cpp); `lost`: computeShares's pieces of axis-aligned faces that went to the
+  // mesh because a trimmed cell beside them was emptied.
+  std::array<std::vector<double>, 3> proposeTrimSplits(const std::vector<Share>& lost, const LazyWinding& winding) const;
   std::array<std::vector<double>, 3> materialConflicts(const std::vector<Share>& shares, double& conflictArea) const;
   void assignMaterials(Block& block, std::vector<Block>& subBlocks, const std::vector<Share>& shares);
-  std::array<std::vector<double>, 3> extraBounds;  // from material conflicts
+  std::array<std::vector<double>, 3> extraBounds;  // from material conflicts and trimmed cells
   struct MaterialLine {
     double at;      // the coordinate along the axis it is a line of constant value of
     double length;  // shared by the two materials

@@ -552,8 +552,9 @@ Result<SolidGrid> buildSolidGrid(const Mesh& mesh, const SolidOptions& options) 
   const LazyWinding winding(mesh);
   // The grid is built again (at most kAttempts times in all) when a slope did not come out as
   // wedges or a quarter-round piece, sphere octant or corner slope as its cells (its boundaries
-  // were added for nothing) or cells show faces of different materials (materialConflicts adds
-  // the boundaries that separate them).
+  // were added for nothing), cells show faces of different materials (materialConflicts adds
+  // the boundaries that separate them) or cells the complementary mesh cuts were emptied though
+  // most of them is solid (proposeTrimSplits adds boundaries that keep that part).
   SolidGrid out;
   std::vector<Builder::Share> shares;
   for (int attempt = 0; attempt < kAttempts; ++attempt) {
@@ -585,27 +586,35 @@ Result<SolidGrid> buildSolidGrid(const Mesh& mesh, const SolidOptions& options) 
     builder.stats.wedgesSeconds += lap();
     out.complement = Mesh{};
     SolidStats area;
-    shares = builder.computeShares(out.complement, area);
+    std::vector<Builder::Share> lost;
+    shares = builder.computeShares(out.complement, area, lost);
     builder.stats.nutAreaM2 = area.nutAreaM2;
     builder.stats.complementAreaM2 = area.complementAreaM2;
     builder.stats.hiddenAreaM2 = area.hiddenAreaM2;
     double conflictArea = 0;
-    auto proposals = builder.materialConflicts(shares, conflictArea);
+    auto conflicts = builder.materialConflicts(shares, conflictArea);
     builder.stats.conflictAreaM2 = conflictArea;
-    // Conflicts on a sliver of the surface are not worth another build of the grid.
-    if (attempt + 1 < kAttempts && conflictArea > kConflictShareForRebuild * area.nutAreaM2) {
-      for (int a = 0; a < 3; ++a) {
-        auto& list = proposals[static_cast<std::size_t>(a)];
-        std::sort(list.begin(), list.end());
-        std::vector<double> fresh;
-        for (double p : list)
-          if (!hasBoundaryNear(builder.bounds[static_cast<std::size_t>(a)], p, builder.tol) && (fresh.empty() || p - fresh.back() > builder.tol))
-            fresh.push_back(p);
-        auto& extra = builder.extraBounds[static_cast<std::size_t>(a)];
-        extra.insert(extra.end(), fresh.begin(), fresh.end());
-        builder.stats.materialBoundaries += static_cast<long long>(fresh.size());
-        again = again || !fresh.empty();
-      }
+    if (attempt + 1 < kAttempts) {
+      // Boundaries not yet there (nor within a tolerance of one another) go into the next build.
+      const auto addBoundaries = [&](std::array<std::vector<double>, 3> proposals, long long& count) {
+        for (int a = 0; a < 3; ++a) {
+          auto& list = proposals[static_cast<std::size_t>(a)];
+          std::sort(list.begin(), list.end());
+          std::vector<double> fresh;
+          for (double p : list)
+            if (!hasBoundaryNear(builder.bounds[static_cast<std::size_t>(a)], p, builder.tol) && (fresh.empty() || p - fresh.back() > builder.tol))
+              fresh.push_back(p);
+          auto& extra = builder.extraBounds[static_cast<std::size_t>(a)];
+          extra.insert(extra.end(), fresh.begin(), fresh.end());
+          count += static_cast<long long>(fresh.size());
+          again = again || !fresh.empty();
+        }
+      };
+      // Conflicts on a sliver of the surface are not worth another build of the grid.
+      if (conflictArea > kConflictShareForRebuild * area.nutAreaM2) addBoundaries(conflicts, builder.stats.materialBoundaries);
+      // Splits of trimmed cells are taken once: the cells they leave cut would propose splits of
+      // their own, and so on down a roof.
+      if (builder.stats.trimBoundaries == 0) addBoundaries(builder.proposeTrimSplits(lost, winding), builder.stats.trimBoundaries);
     }
     builder.stats.materialsSeconds += lap();
     if (!again) break;

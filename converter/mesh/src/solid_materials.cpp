@@ -89,12 +89,13 @@ std::vector<CellRectangle> joinCells(const std::vector<std::array<int, 2>>& cell
 // exactly one side is solid, that cell gets a share of the face's area for the face's material
 // on that side; wedges add their slope (fitWedges), quadric cells their curved face
 // (fitQuadrics). The pieces that are empty on both sides go to `complement`, and the surface
-// statistics are counted.
-std::vector<Builder::Share> Builder::computeShares(Mesh& complement, SolidStats& area) {
+// statistics are counted; those beside a trimmed cell are also listed in `lost`, as shares of
+// that cell (what keeping part of it would win back: proposeTrimSplits).
+std::vector<Builder::Share> Builder::computeShares(Mesh& complement, SolidStats& area, std::vector<Share>& lost) {
   // Faces are handled in chunks on all threads, each chunk into its own lists, which are then
   // joined in chunk order so that the result does not depend on the thread count.
   struct Chunk {
-    std::vector<Share> shares;
+    std::vector<Share> shares, lost;
     Mesh complement;
     double nut = 0, complementArea = 0, hidden = 0;
   };
@@ -192,8 +193,9 @@ std::vector<Builder::Share> Builder::computeShares(Mesh& complement, SolidStats&
           // The cell faces at boundary kk under the piece: whether the cells below and above are
           // solid there. A cell showing a quarter-round sub-block covers the piece only where S
           // is solid under all of it; where the arc crosses it, the other side's cell shows it.
+          constexpr std::size_t kNoCell = std::numeric_limits<std::size_t>::max();
           struct Sides {
-            std::size_t lo, hi;  // the cells below and above the boundary
+            std::size_t lo, hi;  // the cells below and above the boundary (kNoCell: beyond the grid)
             bool solidLo, solidHi;
           };
           const auto sidesAt = [&](int kk) {
@@ -205,7 +207,7 @@ std::vector<Builder::Share> Builder::computeShares(Mesh& complement, SolidStats&
             std::array<dvec3, 12> onBoundary = corners;
             for (int m = 0; m < piece.n; ++m) onBoundary[static_cast<std::size_t>(m)][a] = A[static_cast<std::size_t>(kk)];
             const std::span<const dvec3> points(onBoundary.data(), static_cast<std::size_t>(piece.n));
-            Sides s{0, 0, false, false};
+            Sides s{kNoCell, kNoCell, false, false};
             if (kk > 0) s.lo = index(lo), s.solidLo = solidAt(s.lo, points);
             if (kk < n[static_cast<std::size_t>(a)]) s.hi = index(hi), s.solidHi = solidAt(s.hi, points);
             return s;
@@ -244,6 +246,8 @@ std::vector<Builder::Share> Builder::computeShares(Mesh& complement, SolidStats&
             }
             uncovered.push_back({i, j});
             uncoveredArea += pieceArea;
+            if (sides.lo != kNoCell && trimmed.contains(sides.lo)) out.lost.push_back({sides.lo, material, static_cast<std::uint8_t>(2 * a + 1), pieceArea});
+            if (sides.hi != kNoCell && trimmed.contains(sides.hi)) out.lost.push_back({sides.hi, material, static_cast<std::uint8_t>(2 * a), pieceArea});
             out.complementArea += pieceArea;
           } else {
             out.hidden += pieceArea;  // solid on both sides: an inner face nobody sees
@@ -269,8 +273,10 @@ std::vector<Builder::Share> Builder::computeShares(Mesh& complement, SolidStats&
     }
   });
   std::vector<Share> shares = wedgeShares;
+  lost.clear();
   for (Chunk& c : chunks) {
     shares.insert(shares.end(), c.shares.begin(), c.shares.end());
+    lost.insert(lost.end(), c.lost.begin(), c.lost.end());
     const auto base = static_cast<std::uint32_t>(complement.positions.size());
     complement.positions.insert(complement.positions.end(), c.complement.positions.begin(), c.complement.positions.end());
     for (const auto& t : c.complement.triangles) complement.triangles.push_back({t[0] + base, t[1] + base, t[2] + base});

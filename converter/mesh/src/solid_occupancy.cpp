@@ -6,8 +6,12 @@
 #include <cmath>
 #include <limits>
 #include <numeric>
+#include <optional>
+#include <unordered_map>
 
 #include <glm/geometric.hpp>
+
+#include <nut/units.hpp>
 
 #include "parallel.hpp"
 #include "solid_builder.hpp"
@@ -434,13 +438,71 @@ bool triangleOverlapsBox(dvec3 a, dvec3 b, dvec3 c, const dvec3& centre, const d
   return true;
 }
 
+namespace {
+
+// Grows `extent` by the part of triangle abc inside the box [lo, hi] (Sutherland-Hodgman against
+// its six sides).
+void growByClippedTriangle(Builder::CutExtent& extent, const dvec3& a, const dvec3& b, const dvec3& c, const dvec3& lo, const dvec3& hi) {
+  std::array<dvec3, 9> poly{a, b, c}, next{};
+  int n = 3;
+  for (int side = 0; side < 6 && n > 0; ++side) {
+    const int axis = side / 2;
+    const bool below = side % 2 == 1;
+    const double bound = below ? hi[axis] : lo[axis];
+    int m = 0;
+    for (int i = 0; i < n; ++i) {
+      const dvec3& p = poly[static_cast<std::size_t>(i)];
+      const dvec3& q = poly[static_cast<std::size_t>(i + 1 == n ? 0 : i + 1)];
+      const bool pin = below ? p[axis] <= bound : p[axis] >= bound;
+      const bool qin = below ? q[axis] <= bound : q[axis] >= bound;
+      if (pin) next[static_cast<std::size_t>(m++)] = p;
+      if (pin != qin) {
+        dvec3 x = p + (bound - p[axis]) / (q[axis] - p[axis]) * (q - p);
+        x[axis] = bound;
+        next[static_cast<std::size_t>(m++)] = x;
+      }
+    }
+    poly = next;
+    n = m;
+  }
+  for (int i = 0; i < n; ++i) {
+    extent.lo = glm::min(extent.lo, poly[static_cast<std::size_t>(i)]);
+    extent.hi = glm::max(extent.hi, poly[static_cast<std::size_t>(i)]);
+  }
+}
+
+// Inside at the corners of box [lo, hi] (grid frame), each inset a little: on the box's own faces
+// the winding number of a face lying there would be ambiguous, and a face may lie up to a
+// tolerance off its boundary.
+bool insideAllOver(const LazyWinding& winding, const dvec3& origin, double tol, const dvec3& lo, const dvec3& hi) {
+  for (int sample = 0; sample < 8; ++sample) {
+    dvec3 q;
+    for (int ax = 0; ax < 3; ++ax) {
+      const double inset = std::min(kCornerInset * (hi[ax] - lo[ax]), kCornerInsetTolerances * tol);
+      q[ax] = (sample >> ax) & 1 ? hi[ax] - inset : lo[ax] + inset;
+    }
+    if (winding(q + origin) < kInside) return false;
+  }
+  return true;
+}
+
+}  // namespace
+
 // Box cells that a face of the complementary mesh cuts stay solid only when they are inside all
 // over (all eight corners): a cell half above a roof the grid could not follow would poke through
 // it, while a missing part under the roof is hidden by the roof mesh, and the cell's own faces
-// that go missing with it are empty on both sides and so move to the mesh as well.
+// that go missing with it are empty on both sides and so move to the mesh as well. The cells
+// emptied are kept in `trimmed` with the extent of what cuts them, for proposeTrimSplits.
 void Builder::trimCutCells(const LazyWinding& winding) {
-  std::vector<std::uint8_t> cut(shape.size(), 0);
-  bool any = false;
+  std::unordered_map<std::size_t, CutExtent> cut;
+  const auto cellBox = [&](std::size_t id, dvec3& lo, dvec3& hi) {
+    const std::array<int, 3> c = cellAt(id);
+    for (int ax = 0; ax < 3; ++ax) {
+      const auto& B = bounds[static_cast<std::size_t>(ax)];
+      lo[ax] = B[static_cast<std::size_t>(c[static_cast<std::size_t>(ax)])];
+      hi[ax] = B[static_cast<std::size_t>(c[static_cast<std::size_t>(ax)] + 1)];
+    }
+  };
   const auto markCut = [&](const dvec3& a, const dvec3& b, const dvec3& c) {
     std::array<int, 3> lo{}, hi{};
     for (int ax = 0; ax < 3; ++ax) {
@@ -452,15 +514,13 @@ void Builder::trimCutCells(const LazyWinding& winding) {
       for (int y = lo[1]; y <= hi[1]; ++y)
         for (int x = lo[0]; x <= hi[0]; ++x) {
           const std::size_t id = index(x, y, z);
-          if (shape[id] != 0 || cut[id] || subPiece[id] >= 0) continue;  // a sub-block's cell shows S, not its shape
-          const dvec3 cellLo(bounds[0][static_cast<std::size_t>(x)], bounds[1][static_cast<std::size_t>(y)], bounds[2][static_cast<std::size_t>(z)]);
-          const dvec3 cellHi(bounds[0][static_cast<std::size_t>(x + 1)], bounds[1][static_cast<std::size_t>(y + 1)], bounds[2][static_cast<std::size_t>(z + 1)]);
+          if (shape[id] != 0 || subPiece[id] >= 0) continue;  // a sub-block's cell shows S, not its shape
+          dvec3 cellLo, cellHi;
+          cellBox(id, cellLo, cellHi);
           // Shrunk a little: a face lying on the cell's side does not cut it.
           const dvec3 half = 0.5 * (cellHi - cellLo) - dvec3(1e-6);
-          if (glm::all(glm::greaterThan(half, dvec3(0.0))) && triangleOverlapsBox(a, b, c, 0.5 * (cellLo + cellHi), half)) {
-            cut[id] = 1;
-            any = true;
-          }
+          if (glm::all(glm::greaterThan(half, dvec3(0.0))) && triangleOverlapsBox(a, b, c, 0.5 * (cellLo + cellHi), half))
+            growByClippedTriangle(cut[id], a, b, c, cellLo, cellHi);
         }
   };
   for (std::uint32_t f = 0; f < faces.size(); ++f) {
@@ -474,39 +534,114 @@ void Builder::trimCutCells(const LazyWinding& winding) {
       for (int m = 1; m + 1 < piece.n; ++m)
         markCut(piece.p[0], piece.p[static_cast<std::size_t>(m)], piece.p[static_cast<std::size_t>(m + 1)]);
   }
-  if (!any) return;
+  trimmed.clear();
+  if (cut.empty()) return;
   // Each cut cell's samples are independent of every other cell's result, so the cells are
   // shared among the threads; a cell is only ever emptied, by the thread that owns it.
   std::vector<std::size_t> cutCells;
-  for (std::size_t id = 0; id < cut.size(); ++id)
-    if (cut[id]) cutCells.push_back(id);
-  std::atomic<long long> trimmed{0};
+  for (const auto& entry : cut) cutCells.push_back(entry.first);
+  std::sort(cutCells.begin(), cutCells.end());
+  std::vector<std::uint8_t> emptied(cutCells.size(), 0);
   parallelFor(
       cutCells.size(), 16, options.threads,
       [&](std::size_t begin, std::size_t end) {
-        long long localTrimmed = 0;
         for (std::size_t i = begin; i < end; ++i) {
-          const std::size_t id = cutCells[i];
-          const std::array<int, 3> c = cellAt(id);
-          for (int sample = 0; sample < 8; ++sample) {
-            dvec3 q;
-            for (int ax = 0; ax < 3; ++ax) {
-              const auto& B = bounds[static_cast<std::size_t>(ax)];
-              const double l = B[static_cast<std::size_t>(c[static_cast<std::size_t>(ax)])], h = B[static_cast<std::size_t>(c[static_cast<std::size_t>(ax)] + 1)];
-              const double inset = std::min(kCornerInset * (h - l), kCornerInsetTolerances * tol);
-              q[ax] = (sample >> ax) & 1 ? h - inset : l + inset;
-            }
-            if (winding(q + origin) < kInside) {
-              shape[id] = -1;
-              ++localTrimmed;
-              break;
-            }
-          }
+          dvec3 lo, hi;
+          cellBox(cutCells[i], lo, hi);
+          if (insideAllOver(winding, origin, tol, lo, hi)) continue;
+          shape[cutCells[i]] = -1;
+          emptied[i] = 1;
         }
-        trimmed += localTrimmed;
       },
       options.progress);
-  stats.trimmedCells += trimmed;
+  for (std::size_t i = 0; i < cutCells.size(); ++i)
+    if (emptied[i]) trimmed.emplace(cutCells[i], cut.at(cutCells[i]));
+  stats.trimmedCells += static_cast<long long>(trimmed.size());
+}
+
+// A trimmed cell may still be solid all over on one side of what cuts it: the body of a house
+// under a roof left to the mesh, when no face of the house ends at its eaves, is one cell up to
+// the ridge, and trimming it sends every wall to the mesh. For each trimmed cell, the largest part
+// beyond the extent of the cutting surface along one axis that is at least kTrimSplitShare of the
+// cell and inside at its corners is a candidate; what it is worth is the surface of axis-aligned
+// faces on its sides that went to the mesh with the cell (`lost`, per side; a side along the
+// split counts the part's share of it), when nearly all of it is of one material. Candidates on one side, each within kTrimSplitReach
+// tolerances of the next, are one boundary, placed at the one that keeps the least (the others'
+// parts are solid there too), and proposed when together they are worth kTrimSplitShareOfSurface
+// of the mesh's surface: a boundary runs across the whole grid and must pay for itself.
+std::array<std::vector<double>, 3> Builder::proposeTrimSplits(const std::vector<Share>& lost, const LazyWinding& winding) const {
+  std::array<std::vector<double>, 3> proposals;
+  if (lost.empty()) return proposals;
+  std::vector<Share> byCell = lost;
+  std::sort(byCell.begin(), byCell.end(), [](const Share& x, const Share& y) { return x.cell < y.cell; });
+  std::vector<std::size_t> cells, firstShare;  // each cell's shares: byCell[firstShare[i] .. firstShare[i + 1])
+  for (std::size_t k = 0; k < byCell.size(); ++k)
+    if (k == 0 || byCell[k].cell != byCell[k - 1].cell) {
+      cells.push_back(byCell[k].cell);
+      firstShare.push_back(k);
+    }
+  firstShare.push_back(byCell.size());
+  struct Candidate {
+    double at, worth;
+    bool below;  // the part kept is on the - side of `at`
+  };
+  std::vector<std::optional<std::pair<int, Candidate>>> best(cells.size());
+  parallelFor(cells.size(), 16, options.threads, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t i = begin; i < end; ++i) {
+      const std::array<int, 3> c = cellAt(cells[i]);
+      const CutExtent& cutBy = trimmed.at(cells[i]);
+      const std::span<const Share> sides(byCell.data() + firstShare[i], firstShare[i + 1] - firstShare[i]);
+      dvec3 lo, hi;
+      for (int ax = 0; ax < 3; ++ax) {
+        lo[ax] = bounds[static_cast<std::size_t>(ax)][static_cast<std::size_t>(c[static_cast<std::size_t>(ax)])];
+        hi[ax] = bounds[static_cast<std::size_t>(ax)][static_cast<std::size_t>(c[static_cast<std::size_t>(ax)] + 1)];
+      }
+      for (int ax = 0; ax < 3; ++ax)
+        for (const bool below : {true, false}) {
+          // Snapped away from the cutting surface: boundaries are whole millimetres, and one
+          // rounded into that surface would leave the part cut, and trimmed again.
+          const double units = (below ? cutBy.lo[ax] : cutBy.hi[ax]) / format::kMetresPerUnit;
+          const double at = toMetres(static_cast<std::int64_t>(below ? std::floor(units) : std::ceil(units)));
+          const double share = (below ? at - lo[ax] : hi[ax] - at) / (hi[ax] - lo[ax]);
+          if (share < kTrimSplitShare || hasBoundaryNear(bounds[static_cast<std::size_t>(ax)], at, tol)) continue;
+          // A cell shows one material: a part whose faces would be of several is not kept (the
+          // wall and the panes of a window row behind a facade turned off the grid).
+          std::vector<std::pair<std::uint16_t, double>> worthByMaterial;
+          double worth = 0;
+          for (const Share& piece : sides) {
+            const int side = piece.side;
+            const double w = side / 2 != ax ? share * piece.area : (side % 2 == 0) == below ? piece.area : 0.0;
+            auto m = std::find_if(worthByMaterial.begin(), worthByMaterial.end(), [&](const auto& e) { return e.first == piece.material; });
+            if (m == worthByMaterial.end()) m = worthByMaterial.insert(worthByMaterial.end(), {piece.material, 0.0});
+            m->second += w;
+            worth += w;
+          }
+          double mostOneMaterial = 0;
+          for (const auto& [material, w] : worthByMaterial) mostOneMaterial = std::max(mostOneMaterial, w);
+          if (mostOneMaterial < (1 - kConflictShareOfCell) * worth) continue;
+          if (best[i] && worth <= best[i]->second.worth) continue;
+          dvec3 partLo = lo, partHi = hi;
+          (below ? partHi : partLo)[ax] = at;
+          if (insideAllOver(winding, origin, tol, partLo, partHi)) best[i] = {ax, Candidate{at, worth, below}};
+        }
+    }
+  });
+  std::array<std::vector<Candidate>, 3> byAxis;
+  for (const auto& b : best)
+    if (b) byAxis[static_cast<std::size_t>(b->first)].push_back(b->second);
+  for (int ax = 0; ax < 3; ++ax) {
+    auto& list = byAxis[static_cast<std::size_t>(ax)];
+    std::sort(list.begin(), list.end(), [](const Candidate& x, const Candidate& y) { return x.below != y.below ? x.below : x.at < y.at; });
+    for (std::size_t first = 0; first < list.size();) {
+      std::size_t last = first;
+      double worth = list[first].worth;
+      while (last + 1 < list.size() && list[last + 1].below == list[first].below && list[last + 1].at - list[last].at <= kTrimSplitReach * tol)
+        worth += list[++last].worth;
+      if (worth >= kTrimSplitShareOfSurface * stats.areaM2) proposals[static_cast<std::size_t>(ax)].push_back(list[first].below ? list[first].at : list[last].at);
+      first = last + 1;
+    }
+  }
+  return proposals;
 }
 
 }  // namespace nut::converter::solid

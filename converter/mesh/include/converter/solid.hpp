@@ -33,7 +33,10 @@
 //    closed mesh and no luck at edges; cells between the same two
 //    crossings share one evaluation, and an ambiguous value (a centre on a surface) is sampled at
 //    four more points. Cells that faces of the complementary mesh cut stay solid only when they
-//    are inside all over, so they never poke through the mesh.
+//    are inside all over, so they never poke through the mesh. Where such a cell is solid all
+//    over on one side of what cuts it (a house under a roof left to the mesh, with no face ending
+//    at the eaves), the grid is built once more with a boundary there, when the faces it wins
+//    back from the mesh are worth it (1 % of the surface).
 // 4. Materials. Each axis-aligned face is clipped against the cell faces it covers; where exactly
 //    one side is solid, that cell gains the face's area for the face's material and the cell takes
 //    the material of largest area. Uncovered parts of faces (thin sheets, details below the
@@ -94,6 +97,7 @@ struct SolidStats {
   int cornerSlopesAsSubBlocks = 0;    // of those, shown by a block of their own (cut by other boundaries)
   long long pyramidCells = 0;         // pyramid and inverse pyramid cells
   long long trimmedCells = 0;         // cut by the complementary mesh and not inside all over: empty
+  long long trimBoundaries = 0;       // boundaries added to keep the solid part of such cells (under a roof left to the mesh)
   long long columns = 0;              // lines of cells along the sweep axis
   long long windingColumns = 0;       // of those, decided by winding numbers (all, on an open surface)
   long long windingEvaluations = 0;
