@@ -36,7 +36,7 @@
 //    are inside all over, so they never poke through the mesh. Where such a cell is solid all
 //    over on one side of what cuts it (a house under a roof left to the mesh, with no face ending
 //    at the eaves), the grid is built once more with a boundary there, when the faces it wins
-//    back from the mesh are worth it (1 % of the surface).
+//    back from the mesh are worth it (2 % of the surface).
 // 4. Materials. Each axis-aligned face is clipped against the cell faces it covers; where exactly
 //    one side is solid, that cell gains the face's area for the face's material and the cell takes
 //    the material of largest area. Uncovered parts of faces (thin sheets, details below the
