@@ -565,7 +565,7 @@ void Builder::trimCutCells(const LazyWinding& winding) {
 // beyond the extent of the cutting surface along one axis that is at least kTrimSplitShare of the
 // cell and inside at its corners is a candidate; what it is worth is the surface of axis-aligned
 // faces on its sides that went to the mesh with the cell (`lost`, per side; a side along the
-// split counts the part's share of it), when nearly all of it is of one material. Candidates on one side, each within kTrimSplitReach
+// split counts the part's share of it). Candidates on one side, each within kTrimSplitReach
 // tolerances of the next, are one boundary, placed at the one that keeps the least (the others'
 // parts are solid there too), and proposed when together they are worth kTrimSplitShareOfSurface
 // of the mesh's surface: a boundary runs across the whole grid and must pay for itself.
@@ -604,21 +604,9 @@ std::array<std::vector<double>, 3> Builder::proposeTrimSplits(const std::vector<
           const double at = toMetres(static_cast<std::int64_t>(below ? std::floor(units) : std::ceil(units)));
           const double share = (below ? at - lo[ax] : hi[ax] - at) / (hi[ax] - lo[ax]);
           if (share < kTrimSplitShare || hasBoundaryNear(bounds[static_cast<std::size_t>(ax)], at, tol)) continue;
-          // A cell shows one material: a part whose faces would be of several is not kept (the
-          // wall and the panes of a window row behind a facade turned off the grid).
-          std::vector<std::pair<std::uint16_t, double>> worthByMaterial;
           double worth = 0;
-          for (const Share& piece : sides) {
-            const int side = piece.side;
-            const double w = side / 2 != ax ? share * piece.area : (side % 2 == 0) == below ? piece.area : 0.0;
-            auto m = std::find_if(worthByMaterial.begin(), worthByMaterial.end(), [&](const auto& e) { return e.first == piece.material; });
-            if (m == worthByMaterial.end()) m = worthByMaterial.insert(worthByMaterial.end(), {piece.material, 0.0});
-            m->second += w;
-            worth += w;
-          }
-          double mostOneMaterial = 0;
-          for (const auto& [material, w] : worthByMaterial) mostOneMaterial = std::max(mostOneMaterial, w);
-          if (mostOneMaterial < (1 - kConflictShareOfCell) * worth) continue;
+          for (const Share& piece : sides)
+            worth += piece.side / 2 != ax ? share * piece.area : (piece.side % 2 == 0) == below ? piece.area : 0.0;
           if (best[i] && worth <= best[i]->second.worth) continue;
           dvec3 partLo = lo, partHi = hi;
           (below ? partHi : partLo)[ax] = at;
