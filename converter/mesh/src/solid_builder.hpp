@@ -292,6 +292,15 @@ struct Builder {
     const auto nx = static_cast<std::size_t>(n[0]), ny = static_cast<std::size_t>(n[1]);
     return {static_cast<int>(id % nx), static_cast<int>(id / nx % ny), static_cast<int>(id / (nx * ny))};
   }
+  // The box of cell `id` (grid frame).
+  void cellBox(std::size_t id, dvec3& lo, dvec3& hi) const {
+    const std::array<int, 3> c = cellAt(id);
+    for (int ax = 0; ax < 3; ++ax) {
+      const auto& B = bounds[static_cast<std::size_t>(ax)];
+      lo[ax] = B[static_cast<std::size_t>(c[static_cast<std::size_t>(ax)])];
+      hi[ax] = B[static_cast<std::size_t>(c[static_cast<std::size_t>(ax)] + 1)];
+    }
+  }
   dvec3 corner(std::uint32_t face, int k) const { return p[mesh.triangles[face][static_cast<std::size_t>(k)]]; }
 
   // What a piece of faces spans: its bounding box, area, summed area vector and area per material.

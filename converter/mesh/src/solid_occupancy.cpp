@@ -5,6 +5,7 @@
 #include <atomic>
 #include <cmath>
 #include <limits>
+#include <map>
 #include <numeric>
 #include <optional>
 #include <unordered_map>
@@ -495,14 +496,6 @@ bool insideAllOver(const LazyWinding& winding, const dvec3& origin, double tol, 
 // emptied are kept in `trimmed` with the extent of what cuts them, for proposeTrimSplits.
 void Builder::trimCutCells(const LazyWinding& winding) {
   std::unordered_map<std::size_t, CutExtent> cut;
-  const auto cellBox = [&](std::size_t id, dvec3& lo, dvec3& hi) {
-    const std::array<int, 3> c = cellAt(id);
-    for (int ax = 0; ax < 3; ++ax) {
-      const auto& B = bounds[static_cast<std::size_t>(ax)];
-      lo[ax] = B[static_cast<std::size_t>(c[static_cast<std::size_t>(ax)])];
-      hi[ax] = B[static_cast<std::size_t>(c[static_cast<std::size_t>(ax)] + 1)];
-    }
-  };
   const auto markCut = [&](const dvec3& a, const dvec3& b, const dvec3& c) {
     std::array<int, 3> lo{}, hi{};
     for (int ax = 0; ax < 3; ++ax) {
@@ -572,15 +565,10 @@ void Builder::trimCutCells(const LazyWinding& winding) {
 std::array<std::vector<double>, 3> Builder::proposeTrimSplits(const std::vector<Share>& lost, const LazyWinding& winding) const {
   std::array<std::vector<double>, 3> proposals;
   if (lost.empty()) return proposals;
-  std::vector<Share> byCell = lost;
-  std::sort(byCell.begin(), byCell.end(), [](const Share& x, const Share& y) { return x.cell < y.cell; });
-  std::vector<std::size_t> cells, firstShare;  // each cell's shares: byCell[firstShare[i] .. firstShare[i + 1])
-  for (std::size_t k = 0; k < byCell.size(); ++k)
-    if (k == 0 || byCell[k].cell != byCell[k - 1].cell) {
-      cells.push_back(byCell[k].cell);
-      firstShare.push_back(k);
-    }
-  firstShare.push_back(byCell.size());
+  // What each trimmed cell lost, per side (Share::side), in the order of the cells.
+  std::map<std::size_t, std::array<double, 6>> lostBySide;
+  for (const Share& s : lost) lostBySide[s.cell][s.side] += s.area;
+  const std::vector<std::pair<std::size_t, std::array<double, 6>>> cells(lostBySide.begin(), lostBySide.end());
   struct Candidate {
     double at, worth;
     bool below;  // the part kept is on the - side of `at`
@@ -588,14 +576,10 @@ std::array<std::vector<double>, 3> Builder::proposeTrimSplits(const std::vector<
   std::vector<std::optional<std::pair<int, Candidate>>> best(cells.size());
   parallelFor(cells.size(), 16, options.threads, [&](std::size_t begin, std::size_t end) {
     for (std::size_t i = begin; i < end; ++i) {
-      const std::array<int, 3> c = cellAt(cells[i]);
-      const CutExtent& cutBy = trimmed.at(cells[i]);
-      const std::span<const Share> sides(byCell.data() + firstShare[i], firstShare[i + 1] - firstShare[i]);
+      const auto& [cell, sides] = cells[i];
+      const CutExtent& cutBy = trimmed.at(cell);
       dvec3 lo, hi;
-      for (int ax = 0; ax < 3; ++ax) {
-        lo[ax] = bounds[static_cast<std::size_t>(ax)][static_cast<std::size_t>(c[static_cast<std::size_t>(ax)])];
-        hi[ax] = bounds[static_cast<std::size_t>(ax)][static_cast<std::size_t>(c[static_cast<std::size_t>(ax)] + 1)];
-      }
+      cellBox(cell, lo, hi);
       for (int ax = 0; ax < 3; ++ax)
         for (const bool below : {true, false}) {
           // Snapped away from the cutting surface: boundaries are whole millimetres, and one
@@ -605,8 +589,8 @@ std::array<std::vector<double>, 3> Builder::proposeTrimSplits(const std::vector<
           const double share = (below ? at - lo[ax] : hi[ax] - at) / (hi[ax] - lo[ax]);
           if (share < kTrimSplitShare || hasBoundaryNear(bounds[static_cast<std::size_t>(ax)], at, tol)) continue;
           double worth = 0;
-          for (const Share& piece : sides)
-            worth += piece.side / 2 != ax ? share * piece.area : (piece.side % 2 == 0) == below ? piece.area : 0.0;
+          for (int side = 0; side < 6; ++side)
+            worth += side / 2 != ax ? share * sides[static_cast<std::size_t>(side)] : (side % 2 == 0) == below ? sides[static_cast<std::size_t>(side)] : 0.0;
           if (best[i] && worth <= best[i]->second.worth) continue;
           dvec3 partLo = lo, partHi = hi;
           (below ? partHi : partLo)[ax] = at;
