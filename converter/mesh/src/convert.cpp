@@ -16,6 +16,7 @@
 #include <converter/align.hpp>
 #include <converter/assemble.hpp>
 #include <converter/axis_order.hpp>
+#include <converter/hidden_cells.hpp>
 #include <converter/share_axes.hpp>
 #include <nut/mesh_export.hpp>
 #include <nut/png_io.hpp>
@@ -67,11 +68,18 @@ class Phases {
 
 nlohmann::json vec3Json(const glm::dvec3& v) { return nlohmann::json::array({v.x, v.y, v.z}); }
 
-// One way of building the hierarchy: the grid in some axis order, and how blocks are extracted.
+// A grid the variants start from: the solid grid in one axis order, its hidden cells as the
+// solid conversion left them or filled (hidden_cells.hpp).
+struct StartingGrid {
+  TurnedBlock turned;
+  bool hiddenFilled = false;
+};
+
+// One way of building the hierarchy: a starting grid, and how blocks are extracted.
 struct Variant {
   std::string name;
   BlockOptions options;
-  const TurnedBlock* grid;
+  const StartingGrid* grid;
   const GridSearch* search = nullptr;  // searchGrid(grid), when found for several variants
 };
 
@@ -97,12 +105,13 @@ bool smaller(const BuiltVariant& x, const BuiltVariant& y) {
 BuiltVariant buildVariant(const SolidGrid& grid, const Variant& v, const ConvertOptions& options) {
   const auto start = Clock::now();
   BuiltVariant b;
-  b.hierarchy = buildHierarchy(v.grid->block, grid.materials, grid.originM, v.options, b.stats, grid.subBlocks, v.search);
+  const TurnedBlock& turned = v.grid->turned;
+  b.hierarchy = buildHierarchy(turned.block, grid.materials, grid.originM, v.options, b.stats, grid.subBlocks, v.search);
   if (!b.hierarchy) {
     b.image = b.hierarchy.error();
     return b;
   }
-  if (v.grid->cube != 0) wrapRoot(*b.hierarchy, grid.block.sizeM(), v.grid->cube, v.grid->offsetM);
+  if (turned.cube != 0) wrapRoot(*b.hierarchy, grid.block.sizeM(), turned.cube, turned.offsetM);
   compactMaterials(*b.hierarchy);
   auto added = splitBlocks(*b.hierarchy);
   if (!added) {
@@ -142,28 +151,29 @@ std::vector<BuiltVariant> buildVariants(const SolidGrid& grid, const std::vector
   return built;
 }
 
-// The variants of one axis order of the grid: no extraction (when the grid is small enough to be
+// The variants of one starting grid: no extraction (when the grid is small enough to be
 // a flat block), the priced search (`priced`, small grids), and repeats only or repeats and
 // splits at each threshold, from many small blocks to a few large ones (BlockOptions::minSavedCells).
 // Block extraction pays on repetitive buildings and costs headers and metadata on small ones,
 // and PNG compression already shrinks repeated rows of a flat grid; so every variant is compiled
 // and the smallest is kept (each is reported).
-std::vector<Variant> variantsOf(const TurnedBlock& g, const BlockOptions& base, std::size_t gridCells, bool priced) {
+std::vector<Variant> variantsOf(const StartingGrid& g, const BlockOptions& base, std::size_t gridCells, bool priced) {
   const bool flatFeasible = gridCells <= kMaxFlatCells;
-  const std::string turned = g.cube == 0 ? "" : ", axes turned by rotation " + std::to_string(g.cube);
+  const std::string start = (g.turned.cube == 0 ? "" : ", axes turned by rotation " + std::to_string(g.turned.cube)) +
+                             (g.hiddenFilled ? ", hidden cells filled" : "");
   std::vector<Variant> list;
   if (!base.automatic || flatFeasible) {
-    list.push_back({"none" + turned, base, &g});
+    list.push_back({"none" + start, base, &g});
     list.back().options.automatic = false;
   }
   if (!base.automatic) return list;
   if (priced && gridCells <= kMaxPricedGridCells) {
-    list.push_back({"priced" + turned, base, &g});
+    list.push_back({"priced" + start, base, &g});
     list.back().options.priced = true;
   }
   for (long long minSaved : kMinSavedCellsTried) {
     if (!flatFeasible && minSaved > kMaxMinSavedCellsLargeGrid) continue;
-    const std::string suffix = " (>= " + std::to_string(minSaved) + " cells" + turned + ")";
+    const std::string suffix = " (>= " + std::to_string(minSaved) + " cells" + start + ")";
     list.push_back({"repeats" + suffix, base, &g});
     list.back().options.cuts = false;
     list.back().options.minSavedCells = minSaved;
@@ -173,45 +183,69 @@ std::vector<Variant> variantsOf(const TurnedBlock& g, const BlockOptions& base, 
   return list;
 }
 
-// The grid as every variant starts from it, in every axis order (axis_order.hpp) when it is small
-// enough for a flat variant. Equal neighbouring layers are merged once here (not with manual
-// blocks: they are world boxes snapped to the cells of the grid as it is).
-std::vector<TurnedBlock> axisOrders(const SolidGrid& grid, const ConvertOptions& options) {
+// The grids the variants start from: the solid grid with its hidden cells as they are and filled
+// (when it has any), each in every axis order (axis_order.hpp). A grid too large for a flat
+// variant is tried in one axis order and one start, filled when most of its cells are hidden: a
+// second start would double the high-rise's block search. Equal neighbouring layers are merged
+// once here (not with manual blocks: they are world boxes snapped to the cells of the grid as it
+// is).
+std::vector<StartingGrid> startingGrids(const SolidGrid& grid, const ConvertOptions& options) {
   const bool manual = !options.blocks.manual.empty();
-  Block simplified = grid.block;
-  if (!manual) simplify(simplified);
-  std::vector<TurnedBlock> orders{{std::move(simplified), 0, glm::dvec3(0.0)}};
-  if (!manual && grid.block.cells.size() <= kMaxFlatCells && options.axisOrder)
-    for (int cube : axisOrderRotations())
-      if (cube != 0) orders.push_back(turnBlock(orders[0].block, cube));
-  return orders;
+  const std::size_t cells = grid.block.cells.size();
+  std::vector<StartingGrid> grids;
+  const auto add = [&](Block start, bool filled) {
+    if (!manual) simplify(start);
+    const std::size_t first = grids.size();
+    grids.push_back({{std::move(start), 0, glm::dvec3(0.0)}, filled});
+    if (!manual && cells <= kMaxFlatCells && options.axisOrder)
+      for (int cube : axisOrderRotations())
+        if (cube != 0) grids.push_back({turnBlock(grids[first].turned.block, cube), filled});
+  };
+  Block filled = grid.block;
+  const std::size_t hidden = fillHiddenCells(filled, grid.materials);
+  if (cells > kMaxFlatCells) {
+    if (2 * hidden > cells) add(std::move(filled), true);
+    else add(grid.block, false);
+  } else {
+    add(grid.block, false);
+    if (hidden > 0) add(std::move(filled), true);
+  }
+  return grids;
 }
 
-// Every variant that is tried, built and judged. With several axis orders, each is probed with
-// the last variant of its list (fewest, largest blocks), and the two whose probes are smallest get
-// every variant; the first of them also the priced one.
-void buildCandidates(const SolidGrid& grid, const std::vector<TurnedBlock>& orders, const BlockOptions& base,
+// Every variant that is tried, built and judged. With several starting grids, each is probed with
+// the last variant of its list (fewest, largest blocks). Of the grids with hidden cells as they
+// are, and of those with hidden cells filled, the two whose probes are smallest get every variant,
+// the first of them also the priced one: a probe misjudges a full search often enough that taking
+// the best two over both kinds lost up to 10 % (street_d).
+void buildCandidates(const SolidGrid& grid, const std::vector<StartingGrid>& orders, const BlockOptions& base,
                      const ConvertOptions& options, std::vector<Variant>& variants, std::vector<BuiltVariant>& built) {
   const std::size_t cells = grid.block.cells.size();
-  std::vector<const TurnedBlock*> searched{&orders[0]};
+  std::vector<const StartingGrid*> searched{&orders[0]};
   if (orders.size() > 1) {
-    for (const TurnedBlock& g : orders) variants.push_back(variantsOf(g, base, cells, false).back());
+    for (const StartingGrid& g : orders) variants.push_back(variantsOf(g, base, cells, false).back());
     built = buildVariants(grid, variants, options);
     judgeVariants(built, options.solid.threads);
     std::vector<std::size_t> rank(orders.size());
     for (std::size_t i = 0; i < rank.size(); ++i) rank[i] = i;
     std::stable_sort(rank.begin(), rank.end(), [&](std::size_t x, std::size_t y) { return smaller(built[x], built[y]); });
-    searched = {&orders[rank[0]], &orders[rank[1]]};
+    searched.clear();
+    for (const std::size_t i : rank) {
+      const auto alike = std::count_if(searched.begin(), searched.end(), [&](const StartingGrid* g) { return g->hiddenFilled == orders[i].hiddenFilled; });
+      if (alike < 2) searched.push_back(&orders[i]);
+    }
   }
   // The orders searched get every variant, which all start with the same look at the grid.
   std::vector<std::shared_ptr<const GridSearch>> searches(searched.size());
   if (base.automatic && base.manual.empty())
     parallelFor(searched.size(), 1, options.solid.threads, [&](std::size_t begin, std::size_t end) {
-      for (std::size_t i = begin; i < end; ++i) searches[i] = searchGrid(searched[i]->block, base.toleranceM);
+      for (std::size_t i = begin; i < end; ++i) searches[i] = searchGrid(searched[i]->turned.block, base.toleranceM);
     });
   std::vector<Variant> more;
   for (std::size_t i = 0; i < searched.size(); ++i) {
-    std::vector<Variant> list = variantsOf(*searched[i], base, cells, i == 0);
+    const bool firstOfItsKind = std::none_of(searched.begin(), searched.begin() + static_cast<std::ptrdiff_t>(i),
+                                             [&](const StartingGrid* g) { return g->hiddenFilled == searched[i]->hiddenFilled; });
+    std::vector<Variant> list = variantsOf(*searched[i], base, cells, firstOfItsKind);
     if (orders.size() > 1) list.pop_back();  // the probe, built already
     for (Variant& v : list) v.search = searches[i].get();
     more.insert(more.end(), list.begin(), list.end());
@@ -272,7 +306,7 @@ bool buildHni(const SolidGrid& grid, const ConvertOptions& options, Conversion& 
   BlockOptions base = options.blocks;
   base.toleranceM = options.solid.toleranceM;
   base.heuristicToleranceM = options.compile.heuristicToleranceM;
-  const std::vector<TurnedBlock> orders = axisOrders(grid, options);
+  const std::vector<StartingGrid> orders = startingGrids(grid, options);
   std::vector<Variant> variants;
   std::vector<BuiltVariant> built;
   buildCandidates(grid, orders, base, options, variants, built);
@@ -286,7 +320,8 @@ bool buildHni(const SolidGrid& grid, const ConvertOptions& options, Conversion& 
   report.blocks = std::move(b.stats);
   report.splitBlocks = b.split;
   report.blockMode = variants[*chosen].name;
-  report.axisOrderCube = variants[*chosen].grid->cube;
+  report.axisOrderCube = variants[*chosen].grid->turned.cube;
+  report.hiddenCellsFilled = variants[*chosen].grid->hiddenFilled;
   report.hni = computeStats(out.image);
   return true;
 }
@@ -476,6 +511,7 @@ std::string reportJson(const ConvertReport& r) {
                    {"complement_triangles", r.complementTriangles}}},
       {"blocks", {{"mode", r.blockMode},
                   {"axis_order_rotation", r.axisOrderCube},
+                  {"hidden_cells_filled", r.hiddenCellsFilled},
                   {"variants", variants},
                   {"found", found},
                   {"split_for_limits", r.splitBlocks},

@@ -67,6 +67,7 @@ struct ConvertReport {
   double yawDeg = 0;              // the building's dominant orientation about +y (align.hpp)
   bool yawApplied = false;        // converted in that frame and wrapped in a yaw redirection
   int axisOrderCube = 0;          // the variant kept turned the grid by this rotation (0: none)
+  bool hiddenCellsFilled = false; // the variant kept started from the grid with hidden cells filled (hidden_cells.hpp)
   SolidStats solid;
   BlockStats blocks;
   std::string blockMode;              // the variant kept
