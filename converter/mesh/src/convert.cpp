@@ -51,7 +51,7 @@ constexpr double kJudgedMargin = 1.2;
 // The variants also start from the grid with its hidden cells filled (hidden_cells.hpp) when at
 // least this share of its cells is hidden. Filling won on the samples whose grids are 47-85 %
 // hidden (the street's houses 73-76 %: two of four), and nowhere below (Ingolstadt 32 %, the
-// Kenney houses 21-35 %, the car park 4 %, Zurich's 49 at most 28 %), where a second start only
+// Kenney houses 25-36 %, the car park 4 %, Zurich's 49 at most 28 %), where a second start only
 // doubled the search (Zurich 8.3-9.4 -> 10.6-11.4 s).
 constexpr double kMinHiddenShareForFill = 0.4;
 // Builds of the grid when the HNI does not fit: as asked, slopes strict, tolerance doubled.
