@@ -3,6 +3,7 @@
 // sample's grid the same before and after, pixel for pixel.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdio>
 
 #include <converter/blocks.hpp>

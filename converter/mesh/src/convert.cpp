@@ -219,24 +219,24 @@ std::vector<StartingGrid> startingGrids(const SolidGrid& grid, const ConvertOpti
 // are, and of those with hidden cells filled, the two whose probes are smallest get every variant,
 // the first of them also the priced one: a probe misjudges a full search often enough that taking
 // the best two over both kinds lost up to 10 % (street_d).
-void buildCandidates(const SolidGrid& grid, const std::vector<StartingGrid>& orders, const BlockOptions& base,
+void buildCandidates(const SolidGrid& grid, const std::vector<StartingGrid>& starts, const BlockOptions& base,
                      const ConvertOptions& options, std::vector<Variant>& variants, std::vector<BuiltVariant>& built) {
   const std::size_t cells = grid.block.cells.size();
-  std::vector<const StartingGrid*> searched{&orders[0]};
-  if (orders.size() > 1) {
-    for (const StartingGrid& g : orders) variants.push_back(variantsOf(g, base, cells, false).back());
+  std::vector<const StartingGrid*> searched{&starts[0]};
+  if (starts.size() > 1) {
+    for (const StartingGrid& g : starts) variants.push_back(variantsOf(g, base, cells, false).back());
     built = buildVariants(grid, variants, options);
     judgeVariants(built, options.solid.threads);
-    std::vector<std::size_t> rank(orders.size());
+    std::vector<std::size_t> rank(starts.size());
     for (std::size_t i = 0; i < rank.size(); ++i) rank[i] = i;
     std::stable_sort(rank.begin(), rank.end(), [&](std::size_t x, std::size_t y) { return smaller(built[x], built[y]); });
     searched.clear();
     for (const std::size_t i : rank) {
-      const auto alike = std::count_if(searched.begin(), searched.end(), [&](const StartingGrid* g) { return g->hiddenFilled == orders[i].hiddenFilled; });
-      if (alike < 2) searched.push_back(&orders[i]);
+      const auto alike = std::count_if(searched.begin(), searched.end(), [&](const StartingGrid* g) { return g->hiddenFilled == starts[i].hiddenFilled; });
+      if (alike < 2) searched.push_back(&starts[i]);
     }
   }
-  // The orders searched get every variant, which all start with the same look at the grid.
+  // The grids searched get every variant, which all start with the same look at the grid.
   std::vector<std::shared_ptr<const GridSearch>> searches(searched.size());
   if (base.automatic && base.manual.empty())
     parallelFor(searched.size(), 1, options.solid.threads, [&](std::size_t begin, std::size_t end) {
@@ -247,7 +247,7 @@ void buildCandidates(const SolidGrid& grid, const std::vector<StartingGrid>& ord
     const bool firstOfItsKind = std::none_of(searched.begin(), searched.begin() + static_cast<std::ptrdiff_t>(i),
                                              [&](const StartingGrid* g) { return g->hiddenFilled == searched[i]->hiddenFilled; });
     std::vector<Variant> list = variantsOf(*searched[i], base, cells, firstOfItsKind);
-    if (orders.size() > 1) list.pop_back();  // the probe, built already
+    if (starts.size() > 1) list.pop_back();  // the probe, built already
     for (Variant& v : list) v.search = searches[i].get();
     more.insert(more.end(), list.begin(), list.end());
   }
@@ -307,10 +307,10 @@ bool buildHni(const SolidGrid& grid, const ConvertOptions& options, Conversion& 
   BlockOptions base = options.blocks;
   base.toleranceM = options.solid.toleranceM;
   base.heuristicToleranceM = options.compile.heuristicToleranceM;
-  const std::vector<StartingGrid> orders = startingGrids(grid, options);
+  const std::vector<StartingGrid> starts = startingGrids(grid, options);
   std::vector<Variant> variants;
   std::vector<BuiltVariant> built;
-  buildCandidates(grid, orders, base, options, variants, built);
+  buildCandidates(grid, starts, base, options, variants, built);
   const std::optional<std::size_t> chosen = smallestVariant(variants, built, report, lastError);
   progress("hierarchy", 1);
   if (!chosen) return false;
