@@ -199,8 +199,10 @@ INSTANTIATE_TEST_SUITE_P(CarPark, HandedOver,
                                            Handling{"unwelded_2um_apart", 0, 6, false, TurnedOver::Nothing, true}));
 
 // The external meshes are real models with open shells, tilted faces and non-axis-aligned parts:
-// their figures are printed (docs/CONVERTER.md) and held to a looser bar. (Zurich's 49 buildings
-// spread over 10 km, so each view is mostly background and its figure says little.)
+// their figures are printed (docs/CONVERTER.md) and held to a looser bar, except Ingolstadt's:
+// its facade turned 0.5 degrees is drawn in steps (converter_drift_test), and the bar holds it
+// at the samples' 99 % (98.52 % before). (Zurich's 49 buildings spread over 10 km, so each view
+// is mostly background and its figure says little.)
 class ExternalFidelity : public ::testing::TestWithParam<Case> {};
 
 TEST_P(ExternalFidelity, RendersLikeTheSourceMesh) {
@@ -214,7 +216,7 @@ INSTANTIATE_TEST_SUITE_P(SharedData, ExternalFidelity,
                                            Case{"kenney_building_small_b.obj", 97.0, false},
                                            Case{"kenney_building_small_c.obj", 97.0, false},
                                            Case{"kenney_building_small_d.obj", 97.0, false},
-                                           Case{"ingolstadt_lod3_4018210_aligned.obj", 97.0, false},
+                                           Case{"ingolstadt_lod3_4018210_aligned.obj", 99.0, false},
                                            Case{"zurich_subset_lod2.obj", 99.0, true}));
 
 // Zurich's district views are mostly background, so each building is also measured on its own,

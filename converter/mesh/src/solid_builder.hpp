@@ -271,7 +271,8 @@ struct Builder {
   std::vector<std::array<std::uint32_t, 3>> cornerIds;
   dvec3 size{0.0};
   std::vector<Face> faces;
-  std::array<std::vector<double>, 3> clusterMeans;  // per axis
+  std::array<std::vector<double>, 3> clusterMeans;   // per axis
+  std::array<std::vector<bool>, 3> clusterDrifts;    // per axis and cluster: a step of a drifting chain
   std::vector<SlopePlane> slopes;
   std::vector<QuadricPiece> quadrics;
   std::vector<std::pair<dvec3, dvec3>> bevelBoxes;  // boxes of pieces too coarsely faceted to fit

@@ -8,6 +8,7 @@
 #include <numbers>
 #include <numeric>
 #include <optional>
+#include <span>
 #include <string>
 #include <tuple>
 
@@ -79,30 +80,86 @@ namespace {
 // cluster's weighted mean of `centre` and sets cluster[i] for every item. A cluster that reaches
 // the end of the axis (0 or size) within the tolerance sits there: a wall tilted by half a degree
 // spans centimetres, and a boundary at its mean would leave a sliver of cells half in the wall.
+//
+// A cluster spanning more than twice the tolerance would put its surfaces up to half its span
+// from its one boundary: a facade turned 0.5 degrees against the rest of a surveyed building
+// drifts 7 cm over its 8 m, and its wall, frames and panes chain into one. Where such a cluster
+// holds flat items (within the tolerance of their own plane: panes, frames, sills, the strips of
+// a finely cut wall) at two places or more, each place becomes a step instead: the flat items'
+// centres are grouped from the lowest, each group spanning at most twice the tolerance, at its
+// weighted mean kept within the tolerance of both its ends; every item joins the step nearest its
+// centre. The steps are marked in `drifts`: buildBounds keeps them apart, and computeShares
+// places a tilted face's pieces at the steps they reach. A chain of tilted faces alone (a
+// surveyed wall of two triangles) keeps one boundary, since a step per face would not follow it
+// better.
 struct Interval {
   double lo, hi, centre, weight;
   std::uint32_t item;
 };
-std::vector<double> clusterIntervals(std::vector<Interval> items, double tolerance, double size, std::vector<int>& cluster) {
+std::vector<double> clusterIntervals(std::vector<Interval> items, double tolerance, double size, std::vector<int>& cluster,
+                                     std::vector<bool>& drifts) {
   std::sort(items.begin(), items.end(), [](const Interval& a, const Interval& b) { return a.lo < b.lo; });
   std::vector<double> means;
-  double first = 0, reach = -std::numeric_limits<double>::infinity(), sum = 0, weight = 0;
-  const auto close = [&] {
-    means.push_back(first <= tolerance ? 0.0 : reach >= size - tolerance ? size : sum / weight);
-    sum = weight = 0;
-  };
-  for (const Interval& it : items) {
-    if (it.lo > reach + tolerance && weight > 0) close();
-    if (weight == 0) {
-      first = it.lo;
-      reach = it.hi;
+  const auto atEnds = [&](double lo, double hi, double mean) { return lo <= tolerance ? 0.0 : hi >= size - tolerance ? size : mean; };
+  const auto close = [&](std::span<Interval> members, double lo, double hi) {
+    const auto merged = [&] {
+      double sum = 0, weight = 0;
+      for (const Interval& it : members) {
+        sum += it.weight * it.centre;
+        weight += it.weight;
+        cluster[it.item] = static_cast<int>(means.size());
+      }
+      means.push_back(atEnds(lo, hi, sum / weight));
+      drifts.push_back(false);
+    };
+    if (hi - lo <= 2 * tolerance) {
+      merged();
+      return;
     }
-    reach = std::max(reach, it.hi);
-    sum += it.weight * it.centre;
-    weight += it.weight;
-    cluster[it.item] = static_cast<int>(means.size());
+    const auto flat = [&](const Interval& it) { return it.hi - it.lo <= tolerance; };
+    std::vector<double> steps;
+    std::sort(members.begin(), members.end(), [](const Interval& a, const Interval& b) { return a.centre < b.centre; });
+    for (std::size_t i = 0; i < members.size();) {
+      if (!flat(members[i])) {
+        ++i;
+        continue;
+      }
+      double sum = 0, weight = 0, last = members[i].centre;
+      std::size_t j = i;
+      for (; j < members.size() && members[j].centre <= members[i].centre + 2 * tolerance; ++j)
+        if (flat(members[j])) {
+          sum += members[j].weight * members[j].centre;
+          weight += members[j].weight;
+          last = members[j].centre;
+        }
+      steps.push_back(std::clamp(sum / weight, last - tolerance, members[i].centre + tolerance));
+      i = j;
+    }
+    if (steps.size() < 2) {
+      merged();
+      return;
+    }
+    const auto base = static_cast<int>(means.size());
+    for (const Interval& it : members) cluster[it.item] = base + nearestBoundary(steps, it.centre);
+    for (double step : steps) {
+      means.push_back(atEnds(step - tolerance, step + tolerance, step));
+      drifts.push_back(true);
+    }
+  };
+  std::size_t first = 0;
+  double lo = 0, reach = -std::numeric_limits<double>::infinity();
+  for (std::size_t i = 0; i < items.size(); ++i) {
+    if (i > first && items[i].lo > reach + tolerance) {
+      close(std::span(items).subspan(first, i - first), lo, reach);
+      first = i;
+    }
+    if (i == first) {
+      lo = items[i].lo;
+      reach = items[i].hi;
+    }
+    reach = std::max(reach, items[i].hi);
   }
-  if (weight > 0) close();
+  if (first < items.size()) close(std::span(items).subspan(first), lo, reach);
   return means;
 }
 
@@ -206,7 +263,8 @@ void Builder::analyseFaces() {
   }
   std::vector<int> cluster(faces.size(), -1);
   for (int a = 0; a < 3; ++a) {
-    clusterMeans[static_cast<std::size_t>(a)] = clusterIntervals(intervals[static_cast<std::size_t>(a)], tol, size[a], cluster);
+    clusterMeans[static_cast<std::size_t>(a)] =
+        clusterIntervals(intervals[static_cast<std::size_t>(a)], tol, size[a], cluster, clusterDrifts[static_cast<std::size_t>(a)]);
     stats.planes[static_cast<std::size_t>(a)] = static_cast<int>(clusterMeans[static_cast<std::size_t>(a)].size());
   }
   for (std::uint32_t f = 0; f < faces.size(); ++f)
@@ -375,8 +433,16 @@ void Builder::buildBounds() {
     std::vector<double> weights(clusterMeans[static_cast<std::size_t>(a)].size(), 0.0);
     for (const Face& f : faces)
       if (f.kind == FaceKind::Aligned && f.axis == a) weights[static_cast<std::size_t>(f.group)] += f.area;
-    for (std::size_t c = 0; c < weights.size(); ++c) candidates.emplace_back(clusterMeans[static_cast<std::size_t>(a)][c], weights[c]);
+    std::vector<double> drifting;
+    for (std::size_t c = 0; c < weights.size(); ++c)
+      if (clusterDrifts[static_cast<std::size_t>(a)][c])
+        drifting.push_back(clusterMeans[static_cast<std::size_t>(a)][c]);
+      else
+        candidates.emplace_back(clusterMeans[static_cast<std::size_t>(a)][c], weights[c]);
     bounds[static_cast<std::size_t>(a)] = mergePositions(std::move(candidates), size[a], tol);
+    // A drifting cluster's steps are kept apart: merged as the others are, they would chain back
+    // into one boundary.
+    insertBoundaries(bounds[static_cast<std::size_t>(a)], std::move(drifting), size[a], tol);
     insertBoundaries(bounds[static_cast<std::size_t>(a)], extraBounds[static_cast<std::size_t>(a)], size[a], tol);
   }
 }

@@ -134,7 +134,8 @@ std::vector<Builder::Share> Builder::computeShares(Mesh& complement, SolidStats&
       }
       const int a = face.axis, u = (a + 1) % 3, v = (a + 2) % 3;
       const auto& A = bounds[static_cast<std::size_t>(a)];
-      const int k = nearestBoundary(A, clusterMeans[static_cast<std::size_t>(a)][static_cast<std::size_t>(face.group)]);
+      const int clusterBoundary = nearestBoundary(A, clusterMeans[static_cast<std::size_t>(a)][static_cast<std::size_t>(face.group)]);
+      const bool drifting = clusterDrifts[static_cast<std::size_t>(a)][static_cast<std::size_t>(face.group)];
       const dvec3 P0 = corner(f, 0), P1 = corner(f, 1), P2 = corner(f, 2);
       Polygon2 tri;
       tri.n = 3;
@@ -212,18 +213,29 @@ std::vector<Builder::Share> Builder::computeShares(Mesh& complement, SolidStats&
             if (kk < n[static_cast<std::size_t>(a)]) s.hi = index(hi), s.solidHi = solidAt(s.hi, points);
             return s;
           };
+          // A face of a drifting chain (clusterIntervals) is cut across its steps: each piece
+          // starts at the boundary nearest to where it is.
+          const int k = drifting ? nearestBoundary(A, 0.5 * (surfaceLo + surfaceHi)) : clusterBoundary;
           Sides sides = sidesAt(k);
           // A slightly tilted face spans more than one boundary of its axis: where the cells at
-          // its cluster's boundary are both empty or both solid, the solid's face may be at the
-          // next boundary, still within the tolerance of the surface (a wall 0.1 degree off over
-          // 10 m). That face shows it; otherwise it would take the colour of the cell's other
-          // faces (a ground plate's) with the true wall in the mesh a few millimetres away.
-          for (int kk : {k - 1, k + 1}) {
-            if (sides.solidLo != sides.solidHi) break;
-            if (kk < 0 || kk > n[static_cast<std::size_t>(a)]) continue;
-            const double at = A[static_cast<std::size_t>(kk)];
-            if (at < surfaceLo - tol || at > surfaceHi + tol) continue;
-            if (const Sides near = sidesAt(kk); near.solidLo != near.solidHi) sides = near;
+          // its boundary are both empty or both solid, the solid's face may be at another one,
+          // still within the tolerance of the surface (a wall 0.1 degree off over 10 m; the steps
+          // of a drifting facade). That face shows it, the nearest first; otherwise it would take
+          // the colour of the cell's other faces (a ground plate's) with the true wall in the
+          // mesh a few millimetres away.
+          for (int step = 1; sides.solidLo == sides.solidHi; ++step) {
+            bool inReach = false;
+            for (int kk : {k - step, k + step}) {
+              if (kk < 0 || kk > n[static_cast<std::size_t>(a)]) continue;
+              const double at = A[static_cast<std::size_t>(kk)];
+              if (at < surfaceLo - tol || at > surfaceHi + tol) continue;
+              inReach = true;
+              if (const Sides near = sidesAt(kk); near.solidLo != near.solidHi) {
+                sides = near;
+                break;
+              }
+            }
+            if (!inReach) break;
           }
           const bool solidLo = sides.solidLo, solidHi = sides.solidHi;
           if (solidLo != solidHi) {

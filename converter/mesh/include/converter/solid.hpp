@@ -6,7 +6,9 @@
 //    axis, the faces' coordinate intervals (a face tilted by 0.5 degrees spans several
 //    centimetres) are clustered: intervals closer than `toleranceM` join one cluster, whose
 //    position is the area-weighted mean of its faces (paper: "weighted averages ... where mesh face
-//    areas are used as weights").
+//    areas are used as weights"). A cluster spanning more than twice the tolerance whose flat
+//    faces lie at several depths (a facade turned against the rest of its building, its panes and
+//    frames chained to the wall) becomes a staircase of positions instead, one per depth.
 // 2. Grid. The clusters and the mesh's bounding box give each axis's boundaries, snapped to the
 //    encoding's millimetres. A face sloped along one axis only (a roof pitch, a ramp) adds its end
 //    lines, and boundaries where it crosses other boundaries, so that it runs through cells from
