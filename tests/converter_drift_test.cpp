@@ -6,8 +6,9 @@
 
 #include <cmath>
 #include <cstdio>
-#include <string>
 #include <numbers>
+#include <string>
+#include <utility>
 #include <vector>
 
 #include <glm/geometric.hpp>
@@ -113,6 +114,7 @@ TEST(TurnedFacade, EveryPaneIsAtItsDepthInItsColour) {
   const RayResult firstPane = look(1.7, 1.0);
   ASSERT_TRUE(firstPane.hit);
   EXPECT_NE(firstPane.colour, wall.colour);
+  EXPECT_GT(firstPane.colour[2], firstPane.colour[0]);  // glass is blue, the wall is not
   for (const Window& w : windows()) {
     const double y = 0.5 * (w.ya + w.yb), z = 0.5 * (w.za + w.zb);
     const RayResult pane = look(y, z);
