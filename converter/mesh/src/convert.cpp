@@ -500,6 +500,8 @@ std::string reportJson(const ConvertReport& r) {
                 {"quadric_cells", s.quadricCells},
                 {"sphere_octant_cells", s.sphereOctantCells},
                 {"pyramid_cells", s.pyramidCells},
+                {"builds", s.gridBuilds},
+                {"builds_classified", s.gridsClassified},
                 {"winding_columns", s.windingColumns},
                 {"winding_evaluations", s.windingEvaluations},
                 {"ambiguous_cells", s.ambiguousCells}}},

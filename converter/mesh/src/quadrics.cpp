@@ -339,7 +339,6 @@ bool Builder::fitQuadrics(const LazyWinding& winding) {
         }
       if (layer == 0 || (q.octant() && k != arcCell[static_cast<std::size_t>(e)])) continue;
       if (!q.octant()) arcCell[static_cast<std::size_t>(e)] = k;
-      hint[index(arcCell)] = q.material;
       const double length = q.octant() ? q.e1 - q.e0 : E[static_cast<std::size_t>(k + 1)] - E[static_cast<std::size_t>(k)];
       wedgeShares.push_back({index(arcCell), q.material, 6, q.area * length / (q.e1 - q.e0)});
     }

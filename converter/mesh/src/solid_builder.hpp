@@ -37,7 +37,6 @@ constexpr int kV[3] = {2, 0, 1};
 // open mesh w can reach -1/2); between the ambiguity bounds the cell is sampled again.
 constexpr double kInside = 0.5;
 constexpr double kAmbiguousLow = 0.3, kAmbiguousHigh = 0.7;
-// Rounds of slope closure, and how many boundaries they may add per axis.
 // Clipped pieces of faces smaller than this (1 mm^2) are numerical slivers.
 constexpr double kMinPieceAreaM2 = 1e-6;
 // Faces whose material differs from their cell's on more than this share of the grid's surface
@@ -52,8 +51,9 @@ constexpr double kConflictShareOfSurface = 0.005;
 // A line where coplanar faces of two materials meet gets a boundary when the strip it would
 // colour wrongly is at least this share of the surface (Builder::addMaterialEdges).
 constexpr double kMaterialEdgeShareOfSurface = 0.0005;
-// Builds of the grid at most (see buildSolidGrid).
+// Builds of the grid whose occupancy is computed, at most (see buildSolidGrid).
 constexpr int kAttempts = 3;
+// How many boundaries slope closure may add per axis.
 constexpr std::size_t kMaxSlopeBoundariesPerAxis = 128;
 // Slopes (and corner slopes) with less than this share of the mesh's area are left to the
 // complementary mesh.
@@ -280,6 +280,9 @@ struct Builder {
   std::array<int, 3> n{};
   std::vector<std::int8_t> shape;        // per cell: -1 empty, else solid index (0 box, 1..12 wedge)
   std::vector<std::uint16_t> hint;       // per cell: material of the nearest face along the sweep
+  // shape before anything decided the cell: fitWedges and fitQuadrics run first, and classify
+  // fills the cells they left.
+  static constexpr std::int8_t kUnclassified = -2;
   std::vector<int> subPiece;             // per cell: the quadric piece whose sub-block it shows, or -1
   SolidStats stats;
 
@@ -325,6 +328,7 @@ struct Builder {
   void addMaterialEdges();
   void addQuadricBounds();
   void closeSlopes();
+  // Occupancy of the cells still kUnclassified, and every cell's hint.
   void classify(const LazyWinding& winding);
   bool fitWedges(const LazyWinding& winding);
   bool fitQuadrics(const LazyWinding& winding);

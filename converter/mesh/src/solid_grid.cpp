@@ -616,14 +616,18 @@ Result<SolidGrid> buildSolidGrid(const Mesh& mesh, const SolidOptions& options) 
   builder.findSlopes();
   builder.findMaterialEdges();
   const LazyWinding winding(mesh);
-  // The grid is built again (at most kAttempts times in all) when a slope did not come out as
-  // wedges or a quarter-round piece, sphere octant or corner slope as its cells (its boundaries
-  // were added for nothing), cells show faces of different materials (materialConflicts adds
-  // the boundaries that separate them) or cells the complementary mesh cuts were emptied though
-  // most of them is solid (proposeTrimSplits adds boundaries that keep that part).
+  // The grid is built again when a slope did not come out as wedges or a quarter-round piece,
+  // sphere octant or corner slope as its cells (its boundaries were added for nothing), cells show
+  // faces of different materials (materialConflicts adds the boundaries that separate them) or
+  // cells the complementary mesh cuts were emptied though most of them is solid
+  // (proposeTrimSplits adds boundaries that keep that part). Slopes and pieces are judged by
+  // winding numbers sampled in their own cells, before the occupancy of the rest, so a grid that
+  // failed one is built again at once: its occupancy, which on a roof of many slopes tried and
+  // given up is most of the conversion, is never computed, and such a build does not count
+  // against kAttempts (each gives up at least one slope or piece for good).
   SolidGrid out;
   std::vector<Builder::Share> shares;
-  for (int attempt = 0; attempt < kAttempts; ++attempt) {
+  for (int attempt = 0; attempt < kAttempts;) {
     builder.buildBounds();
     builder.addMaterialEdges();
     builder.addQuadricBounds();
@@ -639,17 +643,25 @@ Result<SolidGrid> buildSolidGrid(const Mesh& mesh, const SolidOptions& options) 
       return Error{mesh.name + ": the grid would have " + std::to_string(builder.n[0]) + " x " + std::to_string(builder.n[1]) +
                    " x " + std::to_string(builder.n[2]) + " cells, more than " + std::to_string(options.maxCells) +
                    "; raise --tolerance to merge nearby planes"};
-    builder.shape.assign(cells, -1);
+    builder.shape.assign(cells, Builder::kUnclassified);
     builder.hint.assign(cells, 0);
     builder.stats.planesSeconds += lap();
-    builder.classify(winding);
-    builder.stats.occupancySeconds += lap();
+    ++builder.stats.gridBuilds;
     builder.stats.slopesAsWedges = 0;
+    bool fitted = builder.fitWedges(winding);
+    fitted = builder.fitQuadrics(winding) && fitted;
+    builder.stats.wedgesSeconds += lap();
+    if (!fitted) continue;
+    ++attempt;
+    ++builder.stats.gridsClassified;
+    builder.classify(winding);
+    // Cells of wedges and round pieces take the material of the surface they show.
+    for (const Builder::Share& s : builder.wedgeShares) builder.hint[s.cell] = s.material;
+    builder.stats.occupancySeconds += lap();
     builder.stats.trimmedCells = 0;
-    bool again = !builder.fitWedges(winding);
-    again = !builder.fitQuadrics(winding) || again;
     builder.trimCutCells(winding);
     builder.stats.wedgesSeconds += lap();
+    bool again = false;
     out.complement = Mesh{};
     SolidStats area;
     std::vector<Builder::Share> lost;
@@ -660,7 +672,7 @@ Result<SolidGrid> buildSolidGrid(const Mesh& mesh, const SolidOptions& options) 
     double conflictArea = 0;
     auto conflicts = builder.materialConflicts(shares, conflictArea);
     builder.stats.conflictAreaM2 = conflictArea;
-    if (attempt + 1 < kAttempts) {
+    if (attempt < kAttempts) {
       // Boundaries not yet there (nor within a tolerance of one another) go into the next build.
       const auto addBoundaries = [&](std::array<std::vector<double>, 3> proposals, long long& count) {
         for (int a = 0; a < 3; ++a) {

@@ -19,9 +19,10 @@
 
 namespace nut::converter::solid {
 
-// Occupancy of every cell centre (step 3 of solid.hpp). Each column of cells along the sweep
-// axis s is a line; its crossings with the faces are gathered and, moving along +s, a face whose
-// normal points against the line is an entry (+1) and one along it an exit (-1). Crossings at one
+// Occupancy of every cell centre that fitWedges and fitQuadrics left (step 3 of solid.hpp), and
+// every cell's material hint. Each column of cells along the sweep axis s is a line; its
+// crossings with the faces are gathered and, moving along +s, a face whose normal points against
+// the line is an entry (+1) and one along it an exit (-1). Crossings at one
 // position (the line through an edge or a vertex shared by several faces) count once per
 // direction, so an edge is never counted twice. On a closed surface (MeshCheck::closedSurface), where
 // the running count never drops below zero and ends at zero, the count is the winding number
@@ -168,6 +169,12 @@ void Builder::classify(const LazyWinding& winding) {
             else if (next != last) hint[id] = mesh.triangleMaterial[next->face];
             // A face through the centre itself leaves the count undecided for this cell.
             const bool onSurface = event < events.size() && events[event].first <= cs[i] + eps;
+            if (shape[id] != kUnclassified) {
+              // A wedge's or a round piece's cell, decided already: the next cell of its run is
+              // evaluated afresh, since a crossing may lie between.
+              known = false;
+              continue;
+            }
             if (closed && !onSurface) {
               shape[id] = count > 0 ? 0 : -1;
               continue;
@@ -333,7 +340,6 @@ bool Builder::fitWedges(const LazyWinding& winding) {
         }
         const std::array<int, 2> oc = offCorners[in[0] ? 0 : 1];
         sh = static_cast<std::int8_t>(makeSolid(SolidGroup::Wedge, e * 4 + oc[0] + 2 * oc[1]).index);
-        hint[index(cell)] = plane.material;
         wedgeShares.push_back({index(cell), plane.material, 6, (eb - ea) * std::hypot(ub - ua, vhi - vlo)});
         pass(crossSection);
       }

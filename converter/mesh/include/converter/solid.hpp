@@ -25,7 +25,9 @@
 //    a sphere (a quarter of a dome) add the planes of its box likewise: one sphere-octant cell, or
 //    a block of its own; so does a corner slope (a planar piece sloped along all three axes that
 //    is the triangle through the three box corners next to one corner: a chamfered corner), as
-//    one pyramid or inverse-pyramid cell.
+//    one pyramid or inverse-pyramid cell. These cells are judged first, by winding numbers
+//    sampled in them: a slope or piece that fails is given up, and the grid is built again
+//    without its boundaries before the occupancy of any other cell is computed.
 // 3. Occupancy. Lines through the cell centres along one axis are intersected with the faces.
 //    When the mesh is a closed surface (every edge cancels, T-junctions matched) and a line's
 //    entries and exits balance (merged where it passes through a shared edge or vertex), the
@@ -100,6 +102,9 @@ struct SolidStats {
   long long pyramidCells = 0;         // pyramid and inverse pyramid cells
   long long trimmedCells = 0;         // cut by the complementary mesh and not inside all over: empty
   long long trimBoundaries = 0;       // boundaries added to keep the solid part of such cells (under a roof left to the mesh)
+  int gridBuilds = 0;                 // grids built: again for boundaries added, or without a slope given up
+  int gridsClassified = 0;            // of those, the ones whose occupancy was computed (the rest gave up
+                                      // a slope or round piece first)
   long long columns = 0;              // lines of cells along the sweep axis
   long long windingColumns = 0;       // of those, decided by winding numbers (all, on an open surface)
   long long windingEvaluations = 0;
