@@ -655,8 +655,6 @@ Result<SolidGrid> buildSolidGrid(const Mesh& mesh, const SolidOptions& options) 
     ++attempt;
     ++builder.stats.gridsClassified;
     builder.classify(winding);
-    // Cells of wedges and round pieces take the material of the surface they show.
-    for (const Builder::Share& s : builder.wedgeShares) builder.hint[s.cell] = s.material;
     builder.stats.occupancySeconds += lap();
     builder.stats.trimmedCells = 0;
     builder.trimCutCells(winding);

@@ -20,7 +20,7 @@
 namespace nut::converter::solid {
 
 // Occupancy of every cell centre that fitWedges and fitQuadrics left (step 3 of solid.hpp), and
-// every cell's material hint. Each column of cells along the sweep axis s is a line; its
+// every cell's material hint (a wedge's or round piece's: its surface's). Each column of cells along the sweep axis s is a line; its
 // crossings with the faces are gathered and, moving along +s, a face whose normal points against
 // the line is an entry (+1) and one along it an exit (-1). Crossings at one
 // position (the line through an edge or a vertex shared by several faces) count once per
@@ -202,6 +202,8 @@ void Builder::classify(const LazyWinding& winding) {
         windingColumns += localWinding;
       },
       options.progress);
+  // Cells of wedges and round pieces take the material of the surface they show.
+  for (const Share& share : wedgeShares) hint[share.cell] = share.material;
   stats.windingEvaluations = evaluations;
   stats.ambiguousCells = ambiguous;
   stats.windingColumns = windingColumns;
