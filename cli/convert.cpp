@@ -32,7 +32,7 @@ struct ConvertCliOptions {
   std::string input, output, complement, report;
   double toleranceM = 0.01;
   double angleDeg = 1.0;
-  bool zUp = false, quiet = false, noAutoBlocks = false, noWedges = false, noAlign = false, noAxisOrder = false;
+  bool zUp = false, quiet = false, noAutoBlocks = false, noWedges = false, noAlign = false, noAxisOrder = false, noWings = false;
   std::vector<std::string> blocks;
   int threads = 0;
   std::string pngEffort = "smallest";
@@ -114,6 +114,7 @@ int run(const ConvertCliOptions& o) {
   options.solid.pyramids = !o.noWedges;
   options.solid.threads = o.threads;
   options.alignYaw = !o.noAlign;
+  options.turnedWings = !o.noWings;
   options.blocks.automatic = !o.noAutoBlocks;
   options.axisOrder = !o.noAxisOrder;
   for (const std::string& text : o.blocks) {
@@ -256,6 +257,9 @@ void addConvertCommand(CLI::App& app, int& exitCode) {
   cmd->add_flag("--no-align", o->noAlign,
                 "Convert a building turned about the vertical in the world frame instead of its own (most of it then "
                 "goes to the complementary mesh)");
+  cmd->add_flag("--no-wings", o->noWings,
+                "Do not convert a wing turned against the rest of the building in a frame of its own (its walls then "
+                "go to the complementary mesh)");
   cmd->add_option("--block", o->blocks, "Extract this box of cells as a block, x0,y0,z0:x1,y1,z1 in world metres (repeatable)");
   cmd->add_option("--threads", o->threads,
                   "Worker threads (0: all cores); with -o FOLDER the buildings are converted side by side, one per thread")

@@ -50,6 +50,7 @@ double nutFraction(const ConvertReport& r) { return r.solid.areaM2 > 0 ? r.solid
 Conversion convert(const Mesh& mesh, bool align) {
   ConvertOptions options;
   options.alignYaw = align;
+  options.turnedWings = align;  // without alignment, a building turned whole would be found a wing
   auto c = convertMesh(mesh, options);
   EXPECT_TRUE(c.ok()) << c.error().message;
   return c.ok() ? std::move(*c) : Conversion{};

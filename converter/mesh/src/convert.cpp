@@ -17,7 +17,9 @@
 #include <converter/assemble.hpp>
 #include <converter/axis_order.hpp>
 #include <converter/hidden_cells.hpp>
+#include <converter/mesh_size.hpp>
 #include <converter/share_axes.hpp>
+#include <converter/wings.hpp>
 #include <nut/mesh_export.hpp>
 #include <nut/png_io.hpp>
 
@@ -327,6 +329,142 @@ bool buildHni(const SolidGrid& grid, const ConvertOptions& options, Conversion& 
   return true;
 }
 
+using Progress = std::function<void(std::string_view, double)>;
+
+// Converts the mesh in the frame it is in into `out`: its solid grid, and the smallest hierarchy
+// made from it. When no hierarchy fits an HNI, the grid is built again coarser: first keeping
+// only slopes that became wedges everywhere, then with the tolerance doubled, each time with a
+// warning in the report. `enclosing`: the whole building, when the mesh is a part of it
+// (wings.hpp); `part` names the part in the phases' names. out.report.check must be set.
+Status convertInFrame(const Mesh& mesh, const Mesh* enclosing, const ConvertOptions& options, Conversion& out,
+                      Phases& phases, const std::string& part, const Progress& progress) {
+  ConvertReport& report = out.report;
+  std::optional<SolidGrid> grid;
+  std::string lastError;
+  for (int coarser = 0; coarser < kCoarserAttempts; ++coarser) {
+    SolidOptions solidOptions = options.solid;
+    solidOptions.closedSurface = report.check.closedSurface;
+    solidOptions.enclosing = enclosing;
+    solidOptions.progress = [&](double f) { progress("solid", f); };
+    if (coarser > 0) solidOptions.partialWedges = false;
+    if (coarser > 1) solidOptions.toleranceM *= std::pow(2.0, coarser - 1);
+    progress("solid", 0);
+    auto built = buildSolidGrid(mesh, solidOptions);
+    if (!built) return built.error();
+    if (coarser > 0)
+      report.warnings.push_back("the grid did not fit an HNI (" + lastError + "); built again with " +
+                                (coarser == 1 ? std::string("only slopes that are wedges everywhere")
+                                              : "tolerance " + std::to_string(solidOptions.toleranceM) + " m"));
+    grid = std::move(*built);
+    report.solid = grid->stats;
+    const SolidStats& s = grid->stats;
+    report.insideTest = report.check.closedSurface && !enclosing
+        ? "crossings counted along the lines of cell centres (closed surface, T-junctions matched); generalized "
+          "winding number on " + std::to_string(s.windingColumns) + " of " + std::to_string(s.columns) + " lines"
+        : "generalized winding number at cell centres (open surface: no closed surface needed)";
+    out.originM = report.originM = grid->originM;
+    const std::string suffix = part + (coarser == 0 ? "" : " (coarser " + std::to_string(coarser) + ")");
+    phases.end("solid" + suffix);
+    const bool fits = buildHni(*grid, options, out, report, lastError, progress);
+    phases.end("hierarchy" + suffix);
+    if (fits) break;
+    grid.reset();
+  }
+  if (!grid) return Error{mesh.name + ": " + lastError};
+  out.complement = std::move(grid->complement);
+  return Ok{};
+}
+
+// The part of a wing's walls on its side of the cut below which a building is not cut
+// (findTurnedWing).
+constexpr double kMinWingShare = 0.1;
+
+// The bytes a conversion costs as files: its HNI (PngEffort::Small) and its complementary mesh as
+// meshopt-compressed glTF with gzip (mesh_size.hpp), none when it is empty.
+std::uint64_t bytesOnDisk(const Conversion& c) {
+  const std::uint64_t png = encodePng(c.image, nullptr, PngEffort::Small).size();
+  return png + (c.complement.triangles.empty() ? 0 : measureMesh(c.complement).glbGzipBytes);
+}
+
+// Converts a building aligned to its frame into `out` (root origin, hierarchy, image and
+// complementary mesh in that frame). When a wing turned against it is found (wings.hpp), the
+// building is also converted cut in two, the wing in its own frame, and that is kept when its
+// files are smaller.
+Status convertBuilding(const Mesh& mesh, const ConvertOptions& options, Conversion& out, Phases& phases,
+                       const Progress& progress) {
+  if (Status s = convertInFrame(mesh, nullptr, options, out, phases, "", progress); !s) return s;
+  if (!options.turnedWings || !options.blocks.manual.empty()) return Ok{};
+  const double tol = options.solid.toleranceM;
+  const std::optional<WingCut> cut = findTurnedWing(mesh, options.solid.angleToleranceDeg, tol, kMinWingShare);
+  if (!cut) return Ok{};
+  WingReport& wing = out.report.wing;
+  wing.found = true;
+  wing.yawDeg = yawDegrees(cut->yaw);
+  wing.axis = cut->axis;
+  wing.cutM = cut->atM;
+  wing.wallShare = cut->wingShare;
+
+  // Each part reaches a tolerance across the cut, so that the cells beside it are whole in both.
+  const double reach = cut->wingAbove ? tol : -tol;
+  const Mesh mainPart = clipToHalfSpace(mesh, cut->axis, cut->atM + reach, !cut->wingAbove);
+  Mesh wingPart = clipToHalfSpace(mesh, cut->axis, cut->atM - reach, cut->wingAbove);
+  const YawFrame wingFrame{cut->yaw, wingPart.bounds().centre()};
+  toAlignedFrame(wingPart, wingFrame);
+  Mesh turned = mesh;
+  toAlignedFrame(turned, wingFrame);
+  Conversion joined, wingOnly;
+  joined.report.check = wingOnly.report.check = out.report.check;
+  Status s = convertInFrame(mainPart, &mesh, options, joined, phases, " (main part)", progress);
+  if (s) s = convertInFrame(wingPart, &turned, options, wingOnly, phases, " (wing)", progress);
+  if (!s) {
+    out.report.warnings.push_back("a wing turned by " + std::to_string(wing.yawDeg) + " degrees was not converted apart: " + s.error().message);
+    return Ok{};
+  }
+  joined.originM = joinAtCut(joined.hierarchy, joined.originM, wingOnly.hierarchy, wingFrame, wingOnly.originM, *cut);
+  auto image = compile(joined.hierarchy, options.compile);
+  if (!image) {
+    out.report.warnings.push_back("a wing turned by " + std::to_string(wing.yawDeg) + " degrees was not converted apart: " + image.error().message);
+    return Ok{};
+  }
+  joined.image = std::move(*image);
+  toWorldFrame(wingOnly.complement, wingFrame);
+  joined.complement = mergeObjects({clipToHalfSpace(joined.complement, cut->axis, cut->atM, !cut->wingAbove),
+                                    clipToHalfSpace(wingOnly.complement, cut->axis, cut->atM, cut->wingAbove)},
+                                   out.complement.name);
+  wing.bytesWithout = bytesOnDisk(out);
+  wing.bytesWith = bytesOnDisk(joined);
+  phases.end("wing join");
+  if (wing.bytesWith >= wing.bytesWithout) return Ok{};
+  wing.applied = true;
+  // The main part's grid and hierarchy stand for the building in the report, with the surface
+  // of both parts (each counts its strip across the cut: a tolerance wide).
+  ConvertReport& r = out.report;
+  const ConvertReport& main = joined.report;
+  r.solid = main.solid;
+  r.solid.areaM2 = mesh.area();
+  r.solid.complementAreaM2 = joined.complement.area();
+  r.solid.hiddenAreaM2 += wingOnly.report.solid.hiddenAreaM2;
+  r.solid.nutAreaM2 += wingOnly.report.solid.nutAreaM2;
+  r.insideTest = main.insideTest;
+  r.blocks = main.blocks;
+  r.variants = main.variants;
+  r.blockMode = main.blockMode;
+  r.axisOrderCube = main.axisOrderCube;
+  r.hiddenCellsFilled = main.hiddenCellsFilled;
+  r.splitBlocks = main.splitBlocks;
+  r.sharedAxes = main.sharedAxes;
+  r.warnings.insert(r.warnings.end(), main.warnings.begin(), main.warnings.end());
+  r.warnings.insert(r.warnings.end(), wingOnly.report.warnings.begin(), wingOnly.report.warnings.end());
+  wing.cells = wingOnly.report.solid.cells;
+  wing.blocks = static_cast<int>(wingOnly.hierarchy.blocks.size());
+  r.originM = out.originM = joined.originM;
+  out.hierarchy = std::move(joined.hierarchy);
+  out.image = std::move(joined.image);
+  r.hni = computeStats(out.image);
+  out.complement = std::move(joined.complement);
+  return Ok{};
+}
+
 }  // namespace
 
 double ConvertReport::seconds() const {
@@ -341,7 +479,7 @@ Result<Conversion> convertMesh(Mesh mesh, const ConvertOptions& options) {
   report.name = mesh.name;
   report.inputTriangles = mesh.triangles.size();
   Phases phases(report.phases);
-  const auto progress = [&](std::string_view phase, double fraction) {
+  const Progress progress = [&](std::string_view phase, double fraction) {
     if (options.progress) options.progress(phase, fraction);
   };
 
@@ -369,41 +507,7 @@ Result<Conversion> convertMesh(Mesh mesh, const ConvertOptions& options) {
   }
   report.yawApplied = frame.has_value();
 
-  // The grid is built as asked; when no hierarchy made from it fits an HNI, it is built again
-  // coarser: first keeping only slopes that became wedges everywhere, then with the tolerance
-  // doubled, each time with a warning in the report.
-  std::optional<SolidGrid> grid;
-  std::string lastError;
-  for (int coarser = 0; coarser < kCoarserAttempts; ++coarser) {
-    SolidOptions solidOptions = options.solid;
-    solidOptions.closedSurface = report.check.closedSurface;
-    solidOptions.progress = [&](double f) { progress("solid", f); };
-    if (coarser > 0) solidOptions.partialWedges = false;
-    if (coarser > 1) solidOptions.toleranceM *= std::pow(2.0, coarser - 1);
-    progress("solid", 0);
-    auto built = buildSolidGrid(mesh, solidOptions);
-    if (!built) return built.error();
-    if (coarser > 0)
-      report.warnings.push_back("the grid did not fit an HNI (" + lastError + "); built again with " +
-                                (coarser == 1 ? std::string("only slopes that are wedges everywhere")
-                                              : "tolerance " + std::to_string(solidOptions.toleranceM) + " m"));
-    grid = std::move(*built);
-    report.solid = grid->stats;
-    const SolidStats& s = grid->stats;
-    report.insideTest = report.check.closedSurface
-        ? "crossings counted along the lines of cell centres (closed surface, T-junctions matched); generalized "
-          "winding number on " + std::to_string(s.windingColumns) + " of " + std::to_string(s.columns) + " lines"
-        : "generalized winding number at cell centres (open surface: no closed surface needed)";
-    out.originM = report.originM = grid->originM;
-    const std::string suffix = coarser == 0 ? "" : " (coarser " + std::to_string(coarser) + ")";
-    phases.end("solid" + suffix);
-    const bool fits = buildHni(*grid, options, out, report, lastError, progress);
-    phases.end("hierarchy" + suffix);
-    if (fits) break;
-    grid.reset();
-  }
-  if (!grid) return Error{mesh.name + ": " + lastError};
-  out.complement = std::move(grid->complement);
+  if (Status s = convertBuilding(mesh, options, out, phases, progress); !s) return s.error();
   if (frame) {
     // Back to the world: the hierarchy inside a yaw redirection, compiled again, and the
     // complementary mesh turned back.
@@ -441,6 +545,25 @@ Status writeConversion(Conversion& conversion, const std::string& pngPath, const
   }
   return Ok{};
 }
+
+namespace {
+
+nlohmann::json wingJson(const WingReport& w) {
+  if (!w.found) return nullptr;
+  nlohmann::json j{{"yaw_deg", w.yawDeg},
+                   {"cut", {{"axis", std::string(1, "xyz"[w.axis])}, {"at_m", w.cutM}}},
+                   {"wall_share", w.wallShare},
+                   {"bytes_without", w.bytesWithout},
+                   {"bytes_with", w.bytesWith},
+                   {"applied", w.applied}};
+  if (w.applied) {
+    j["cells"] = w.cells;
+    j["blocks"] = w.blocks;
+  }
+  return j;
+}
+
+}  // namespace
 
 std::string reportJson(const ConvertReport& r) {
   using nlohmann::json;
@@ -486,6 +609,7 @@ std::string reportJson(const ConvertReport& r) {
                  {"closed_surface", r.check.closedSurface}}},
       {"inside_test", r.insideTest},
       {"alignment", {{"yaw_deg", r.yawDeg}, {"applied", r.yawApplied}}},
+      {"wing", wingJson(r.wing)},
       {"grid", {{"planes", s.planes},
                 {"cells", s.cells},
                 {"sweep_axis", std::string(1, "xyz"[s.sweepAxis])},

@@ -577,8 +577,10 @@ void Builder::closeSlopes() {
 
 using namespace solid;
 
-Result<SolidGrid> buildSolidGrid(const Mesh& mesh, const SolidOptions& options) {
+Result<SolidGrid> buildSolidGrid(const Mesh& mesh, const SolidOptions& asked) {
   if (mesh.triangles.empty()) return Error{mesh.name + ": no triangles to convert"};
+  SolidOptions options = asked;
+  if (options.enclosing) options.closedSurface = false;
   Builder builder(mesh, options);
   const WorldBox box = mesh.bounds();
   builder.origin = box.min;
@@ -615,7 +617,7 @@ Result<SolidGrid> buildSolidGrid(const Mesh& mesh, const SolidOptions& options) 
   builder.findCornerSlopes();   // planar faces sloped along three axes, the domes' taken
   builder.findSlopes();
   builder.findMaterialEdges();
-  const LazyWinding winding(mesh);
+  const LazyWinding winding(options.enclosing ? *options.enclosing : mesh);
   // The grid is built again when a slope did not come out as wedges or a quarter-round piece,
   // sphere octant or corner slope as its cells (its boundaries were added for nothing), cells show
   // faces of different materials (materialConflicts adds the boundaries that separate them) or

@@ -31,6 +31,8 @@ namespace nut::converter::solid {
 // two crossings: an open surface's winding number is not a count of crossings, even on a line
 // that crosses none of its open parts (walls standing on a base plate make the room inside them
 // solid; a line under a gable's overhanging roof crosses both pitches with air between them).
+// The crossings of a part of a building (SolidOptions::enclosing) are those of the whole
+// building's surface, whose winding number decides the cells.
 void Builder::classify(const LazyWinding& winding) {
   const int s = static_cast<int>(std::max_element(n.begin(), n.end()) - n.begin());
   const int b = (s + 1) % 3, c = (s + 2) % 3;
@@ -52,11 +54,28 @@ void Builder::classify(const LazyWinding& winding) {
     double at;
     int sign;  // +1 entry, -1 exit, 0 seen edge-on (only splits runs)
   };
+  struct Triangle {
+    dvec3 a, b, c;
+    double normalS;  // the normal's component along the sweep axis (any length)
+    std::uint16_t material;
+  };
+  std::vector<Triangle> surface;
+  if (options.enclosing) {
+    const Mesh& whole = *options.enclosing;
+    for (std::size_t t = 0; t < whole.triangles.size(); ++t) {
+      const auto& tri = whole.triangles[t];
+      const dvec3 A = whole.positions[tri[0]] - origin, B = whole.positions[tri[1]] - origin, C = whole.positions[tri[2]] - origin;
+      const dvec3 normal = glm::cross(B - A, C - A);
+      if (glm::dot(normal, normal) > 0) surface.push_back({A, B, C, normal[s], whole.triangleMaterial[t]});
+    }
+  } else {
+    for (std::uint32_t f = 0; f < faces.size(); ++f)
+      if (faces[f].area > 0) surface.push_back({corner(f, 0), corner(f, 1), corner(f, 2), faces[f].areaVector[s], mesh.triangleMaterial[f]});
+  }
   std::vector<Crossing> crossings;
   const double eps = 1e-9 * std::max({size.x, size.y, size.z, 1.0});
-  for (std::uint32_t f = 0; f < faces.size(); ++f) {
-    if (faces[f].area <= 0) continue;
-    const dvec3 A = corner(f, 0), B = corner(f, 1), C = corner(f, 2);
+  for (std::uint32_t f = 0; f < surface.size(); ++f) {
+    const dvec3 A = surface[f].a, B = surface[f].b, C = surface[f].c;
     const double bmin = std::min({A[b], B[b], C[b]}) - eps, bmax = std::max({A[b], B[b], C[b]}) + eps;
     const double cmin = std::min({A[c], B[c], C[c]}) - eps, cmax = std::max({A[c], B[c], C[c]}) + eps;
     const auto j0 = static_cast<std::size_t>(std::lower_bound(cb.begin(), cb.end(), bmin) - cb.begin());
@@ -67,7 +86,7 @@ void Builder::classify(const LazyWinding& winding) {
     const double det = (b2.x - a2.x) * (c2.y - a2.y) - (b2.y - a2.y) * (c2.x - a2.x);
     const double scale = glm::length(b2 - a2) + glm::length(c2 - a2) + glm::length(c2 - b2);
     const bool edgeOn = std::abs(det) <= 1e-12 * scale * scale;
-    const int sign = faces[f].areaVector[s] < 0 ? +1 : -1;
+    const int sign = surface[f].normalS < 0 ? +1 : -1;
     const double sMin = std::min({A[s], B[s], C[s]}), sMax = std::max({A[s], B[s], C[s]});
     const double margin = 1e-9;
     for (std::size_t k = k0; k < k1; ++k)
@@ -165,8 +184,8 @@ void Builder::classify(const LazyWinding& winding) {
             cell[static_cast<std::size_t>(s)] = static_cast<int>(i);
             const std::size_t id = index(cell);
             // The nearest face along the column (behind, else ahead) lends its material.
-            if (next != first) hint[id] = mesh.triangleMaterial[(next - 1)->face];
-            else if (next != last) hint[id] = mesh.triangleMaterial[next->face];
+            if (next != first) hint[id] = surface[(next - 1)->face].material;
+            else if (next != last) hint[id] = surface[next->face].material;
             // A face through the centre itself leaves the count undecided for this cell.
             const bool onSurface = event < events.size() && events[event].first <= cs[i] + eps;
             if (shape[id] != kUnclassified) {

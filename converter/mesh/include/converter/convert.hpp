@@ -37,6 +37,9 @@ struct ConvertOptions {
   // Build the hierarchy from the grid in the axis order whose cells compress best, with a root
   // that turns it back (axis_order.hpp). Not with manual blocks.
   bool axisOrder = true;
+  // Convert a wing turned against the rest of the building in a frame of its own, when that
+  // makes the files smaller (wings.hpp). Not with manual blocks.
+  bool turnedWings = true;
   // Progress of the current phase: its name and the fraction done (0..1). Called from the
   // calling thread only.
   std::function<void(std::string_view phase, double fraction)> progress;
@@ -59,6 +62,20 @@ struct VariantReport {
   std::string error;           // why it could not be compiled, if it could not
 };
 
+// A wing turned against the rest of its building (wings.hpp), when one was found.
+struct WingReport {
+  bool found = false;
+  bool applied = false;             // converted in its own frame: the files were smaller
+  double yawDeg = 0;                // its orientation in the building's frame
+  int axis = 0;                     // the cut plane, axis = cutM in the building's frame
+  double cutM = 0;
+  double wallShare = 0;             // share of the walls turned with it, on its side of the cut
+  std::uint64_t bytesWithout = 0;   // HNI (PngEffort::Small) + complementary mesh (meshopt + gzip)
+  std::uint64_t bytesWith = 0;      // the same, converted in two parts
+  std::array<int, 3> cells{};       // the wing's grid, when applied
+  int blocks = 0;                   // the wing's blocks, when applied
+};
+
 struct ConvertReport {
   std::string name;
   std::size_t inputTriangles = 0;
@@ -66,6 +83,7 @@ struct ConvertReport {
   std::string insideTest;         // how occupancy was decided, in words
   double yawDeg = 0;              // the building's dominant orientation about +y (align.hpp)
   bool yawApplied = false;        // converted in that frame and wrapped in a yaw redirection
+  WingReport wing;
   int axisOrderCube = 0;          // the variant kept turned the grid by this rotation (0: none)
   bool hiddenCellsFilled = false; // the variant kept started from the grid with hidden cells filled (hidden_cells.hpp)
   SolidStats solid;

@@ -74,6 +74,10 @@ struct SolidOptions {
   // The mesh is a closed surface (MeshCheck::closedSurface): lines of cells whose crossings
   // balance are counted; otherwise every cell asks the winding number.
   bool closedSurface = false;
+  // When the mesh is one part of a building, clipped to a region of it (wings.hpp): the whole
+  // building in the same frame, whose winding number decides what is inside (the part alone is
+  // open where it was cut, so closedSurface does not apply).
+  const Mesh* enclosing = nullptr;
   // Called from the calling thread with the fraction done of the pass over cells under way: the
   // cells classified, then the cut cells trimmed (each pass, and each build of the grid, starts at 0).
   std::function<void(double)> progress;
