@@ -358,10 +358,12 @@ Status convertInFrame(const Mesh& mesh, const Mesh* enclosing, const ConvertOpti
     grid = std::move(*built);
     report.solid = grid->stats;
     const SolidStats& s = grid->stats;
-    report.insideTest = report.check.closedSurface && !enclosing
-        ? "crossings counted along the lines of cell centres (closed surface, T-junctions matched); generalized "
-          "winding number on " + std::to_string(s.windingColumns) + " of " + std::to_string(s.columns) + " lines"
-        : "generalized winding number at cell centres (open surface: no closed surface needed)";
+    report.insideTest =
+        enclosing ? "generalized winding number of the whole building at cell centres (the building converted in two parts)"
+        : report.check.closedSurface
+            ? "crossings counted along the lines of cell centres (closed surface, T-junctions matched); generalized "
+              "winding number on " + std::to_string(s.windingColumns) + " of " + std::to_string(s.columns) + " lines"
+            : "generalized winding number at cell centres (open surface: no closed surface needed)";
     out.originM = report.originM = grid->originM;
     const std::string suffix = part + (coarser == 0 ? "" : " (coarser " + std::to_string(coarser) + ")");
     phases.end("solid" + suffix);

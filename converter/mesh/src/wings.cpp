@@ -42,8 +42,6 @@ bool within(double angle, double centre, double halfWidth) {
   return std::abs(std::remainder(angle - centre, kQuarterTurn)) <= halfWidth;
 }
 
-double yawRadians(std::uint16_t yaw) { return 2 * std::numbers::pi * yaw / format::kYawSteps; }
-
 }  // namespace
 
 std::optional<WingCut> findTurnedWing(const Mesh& aligned, double angleToleranceDeg, double toleranceM, double minShare) {
@@ -71,27 +69,29 @@ std::optional<WingCut> findTurnedWing(const Mesh& aligned, double angleTolerance
   if (turned.triangles.empty() || total <= 0) return std::nullopt;
   WingCut cut;
   cut.yaw = dominantYaw(turned, angleToleranceDeg);
-  const double wingAngle = yawRadians(cut.yaw);
+  const double wingAngle = yawDegrees(cut.yaw) * std::numbers::pi / 180;
   if (within(wingAngle, 0.0, kMinWingTolerances * halfWidth)) return std::nullopt;
 
   // Per axis and side, the split of the walls sorted by centroid that puts the most weight on the
-  // side of its orientation.
+  // side of its orientation: the walls before `split` lie below the cut.
+  std::array<std::vector<const Wall*>, 3> sorted;
   double bestScore = -1;
+  std::size_t split = 0;
   for (const int axis : {0, 2}) {
-    std::vector<const Wall*> sorted;
-    for (const Wall& w : walls) sorted.push_back(&w);
-    std::sort(sorted.begin(), sorted.end(), [&](const Wall* l, const Wall* r) { return l->centroid[axis] < r->centroid[axis]; });
-    const std::size_t n = sorted.size();
+    std::vector<const Wall*>& order = sorted[static_cast<std::size_t>(axis)];
+    for (const Wall& w : walls) order.push_back(&w);
+    std::sort(order.begin(), order.end(), [&](const Wall* l, const Wall* r) { return l->centroid[axis] < r->centroid[axis]; });
+    const std::size_t n = order.size();
     // mainBelow[i], wingBelow[i]: weight of the walls before i in either orientation.
     std::vector<double> mainBelow(n + 1, 0.0), wingBelow(n + 1, 0.0);
     for (std::size_t i = 0; i < n; ++i) {
-      const Wall& w = *sorted[i];
+      const Wall& w = *order[i];
       mainBelow[i + 1] = mainBelow[i] + (within(w.angle, 0.0, halfWidth) ? w.weight : 0.0);
       wingBelow[i + 1] = wingBelow[i] + (within(w.angle, wingAngle, halfWidth) ? w.weight : 0.0);
     }
     for (const bool wingAbove : {true, false}) {
       for (std::size_t i = 1; i < n; ++i) {
-        if (sorted[i - 1]->centroid[axis] == sorted[i]->centroid[axis]) continue;
+        if (order[i - 1]->centroid[axis] == order[i]->centroid[axis]) continue;
         const double mainSide = wingAbove ? mainBelow[i] : mainBelow[n] - mainBelow[i];
         const double wingSide = wingAbove ? wingBelow[n] - wingBelow[i] : wingBelow[i];
         if (mainSide <= 0 || wingSide < minShare * total || mainSide + wingSide <= bestScore) continue;
@@ -99,18 +99,21 @@ std::optional<WingCut> findTurnedWing(const Mesh& aligned, double angleTolerance
         cut.axis = axis;
         cut.wingAbove = wingAbove;
         cut.wingShare = wingSide / total;
-        // Two tolerances past the main part's last wall of its own orientation, and no further
-        // than the wing's first wall.
-        double edge = wingAbove ? -std::numeric_limits<double>::infinity() : std::numeric_limits<double>::infinity();
-        for (std::size_t j = wingAbove ? 0 : i; j < (wingAbove ? i : n); ++j)
-          if (within(sorted[j]->angle, 0.0, halfWidth))
-            edge = wingAbove ? std::max(edge, sorted[j]->max[axis]) : std::min(edge, sorted[j]->min[axis]);
-        cut.atM = wingAbove ? std::min(edge + 2 * toleranceM, sorted[i]->centroid[axis])
-                            : std::max(edge - 2 * toleranceM, sorted[i - 1]->centroid[axis]);
+        split = i;
       }
     }
   }
   if (bestScore < 0) return std::nullopt;
+  // Two tolerances past the main part's last wall of its own orientation, and no further than the
+  // wing's first wall.
+  const std::vector<const Wall*>& order = sorted[static_cast<std::size_t>(cut.axis)];
+  const bool above = cut.wingAbove;
+  double edge = above ? -std::numeric_limits<double>::infinity() : std::numeric_limits<double>::infinity();
+  for (std::size_t j = above ? 0 : split; j < (above ? split : order.size()); ++j)
+    if (within(order[j]->angle, 0.0, halfWidth))
+      edge = above ? std::max(edge, order[j]->max[cut.axis]) : std::min(edge, order[j]->min[cut.axis]);
+  cut.atM = above ? std::min(edge + 2 * toleranceM, order[split]->centroid[cut.axis])
+                  : std::max(edge - 2 * toleranceM, order[split - 1]->centroid[cut.axis]);
   return cut;
 }
 
