@@ -579,11 +579,12 @@ TEST(SolidGrid, AThinSheetGoesToTheComplementaryMesh) {
   EXPECT_EQ(c->complement.triangles.size(), 2u);
 }
 
-TEST(SolidGrid, TheUncoveredPartOfAFaceGoesToTheMeshInFewPieces) {
+TEST(SolidGrid, AFacePartlyUncoveredGoesToTheMeshInNoMoreTrianglesThanItsOwn) {
   // A box whose +x wall runs on as a fin 2 m past the box: the fin (6 of the wall's 36 m^2) has
   // nothing behind it. A second box far off adds the planes y = 1, 2 and z = 10.5, 11.5, so the
-  // fin spans 3 x 3 cells; its part of each wall triangle must reach the mesh in one piece per
-  // rectangle of cells, not one per cell, with corners shared.
+  // fin spans 3 x 3 cells. Each wall triangle's part of the fin, clipped to those cells, would
+  // take up to three triangles; the mesh takes a triangle whole instead (its part over the box
+  // then drawn twice) unless its part of the fin is one triangle.
   std::string obj = "v 0 0 0\nv 10 0 0\nv 0 3 0\nv 10 3 0\nv 0 0 10\nv 10 0 10\nv 0 3 10\nv 10 3 10\n";
   obj += "v 10 0 12\nv 10 3 12\n";                     // 9, 10: the fin's far edge
   obj += "f 1 5 7 3\nf 1 2 6 5\nf 3 7 8 4\nf 1 3 4 2\nf 5 6 8 7\n";  // -x, -y, +y, -z, +z
@@ -594,11 +595,29 @@ TEST(SolidGrid, TheUncoveredPartOfAFaceGoesToTheMeshInFewPieces) {
   EXPECT_EQ(c->report.solid.planes[1], 4);  // y = 0, 1, 2, 3
   EXPECT_NEAR(c->report.solid.complementAreaM2, 6.0, 1e-6);
   const Mesh& mesh = c->complement;
-  EXPECT_NEAR(mesh.area(), 6.0, 1e-6);
+  EXPECT_LE(mesh.triangles.size(), 2u);
+  EXPECT_NEAR(mesh.area(), 6.0 + c->report.solid.drawnTwiceAreaM2, 1e-6);
+  EXPECT_GT(c->report.solid.drawnTwiceAreaM2, 0.0);
   for (const auto& t : mesh.triangles)
     for (std::uint32_t v : t) EXPECT_NEAR(mesh.positions[v].x + c->originM.x, 10.0, 1e-9);
-  // Each wall triangle's part of the fin is one rectangle of cells: at most 5 corners, 3 triangles.
-  EXPECT_LE(mesh.triangles.size(), 6u);
+  // The mesh covers the whole fin: points on a 0.1 m lattice over it each lie in a triangle.
+  const auto inTriangle = [&](double y, double z) {
+    for (const auto& t : mesh.triangles) {
+      glm::dvec2 p[3];
+      for (int k = 0; k < 3; ++k) p[k] = glm::dvec2(mesh.positions[t[k]].y, mesh.positions[t[k]].z) + glm::dvec2(c->originM.y, c->originM.z);
+      const auto side = [&](int k) {
+        const glm::dvec2 e = p[(k + 1) % 3] - p[k], q = glm::dvec2(y, z) - p[k];
+        return e.x * q.y - e.y * q.x;
+      };
+      const double s0 = side(0), s1 = side(1), s2 = side(2);
+      if ((s0 >= 0 && s1 >= 0 && s2 >= 0) || (s0 <= 0 && s1 <= 0 && s2 <= 0)) return true;
+    }
+    return false;
+  };
+  int uncovered = 0;
+  for (double y = 0.05; y < 3; y += 0.1)
+    for (double z = 10.05; z < 12; z += 0.1) uncovered += !inTriangle(y, z);
+  EXPECT_EQ(uncovered, 0);
   std::vector<glm::dvec3> sorted = mesh.positions;
   std::sort(sorted.begin(), sorted.end(), [](const glm::dvec3& a, const glm::dvec3& b) {
     return a.x != b.x ? a.x < b.x : a.y != b.y ? a.y < b.y : a.z < b.z;

@@ -444,8 +444,9 @@ Status convertBuilding(const Mesh& mesh, const ConvertOptions& options, Conversi
   const ConvertReport& main = joined.report;
   r.solid = main.solid;
   r.solid.areaM2 = mesh.area();
-  r.solid.complementAreaM2 = joined.complement.area();
+  r.solid.complementAreaM2 += wingOnly.report.solid.complementAreaM2;
   r.solid.hiddenAreaM2 += wingOnly.report.solid.hiddenAreaM2;
+  r.solid.drawnTwiceAreaM2 += wingOnly.report.solid.drawnTwiceAreaM2;
   r.solid.nutAreaM2 += wingOnly.report.solid.nutAreaM2;
   r.insideTest = main.insideTest;
   r.blocks = main.blocks;
@@ -635,6 +636,7 @@ std::string reportJson(const ConvertReport& r) {
                    {"nut_m2", s.nutAreaM2},
                    {"complement_m2", s.complementAreaM2},
                    {"hidden_m2", s.hiddenAreaM2},
+                   {"drawn_twice_m2", s.drawnTwiceAreaM2},
                    {"nut_fraction", s.nutAreaM2 / area},
                    {"complement_fraction", s.complementAreaM2 / area},
                    {"complement_triangles", r.complementTriangles}}},

@@ -669,6 +669,7 @@ Result<SolidGrid> buildSolidGrid(const Mesh& mesh, const SolidOptions& asked) {
     builder.stats.nutAreaM2 = area.nutAreaM2;
     builder.stats.complementAreaM2 = area.complementAreaM2;
     builder.stats.hiddenAreaM2 = area.hiddenAreaM2;
+    builder.stats.drawnTwiceAreaM2 = area.drawnTwiceAreaM2;
     double conflictArea = 0;
     auto conflicts = builder.materialConflicts(shares, conflictArea);
     builder.stats.conflictAreaM2 = conflictArea;

@@ -97,7 +97,7 @@ std::vector<Builder::Share> Builder::computeShares(Mesh& complement, SolidStats&
   struct Chunk {
     std::vector<Share> shares, lost;
     Mesh complement;
-    double nut = 0, complementArea = 0, hidden = 0;
+    double nut = 0, complementArea = 0, hidden = 0, drawnTwice = 0;
   };
   constexpr std::size_t kChunk = 4096;
   std::vector<Chunk> chunks((faces.size() + kChunk - 1) / kChunk);
@@ -166,7 +166,7 @@ std::vector<Builder::Share> Builder::computeShares(Mesh& complement, SolidStats&
       // Cells (i, j) whose piece the mesh must show; a face mostly left to the mesh goes there
       // whole instead.
       std::vector<std::array<int, 2>> uncovered;
-      double uncoveredArea = 0;
+      double uncoveredArea = 0, shownArea = 0;
       for (int i = i0; i <= i1; ++i) {
         // A column strip first, then its rows: two clips per cell instead of four.
         Polygon2 strip = tri;
@@ -246,6 +246,7 @@ std::vector<Builder::Share> Builder::computeShares(Mesh& complement, SolidStats&
             out.shares.push_back({solidLo ? sides.lo : sides.hi, material, static_cast<std::uint8_t>(2 * a + (solidLo ? 1 : 0)),
                                   facesOut ? pieceArea : kInnerFaceWeight * pieceArea});
             out.nut += pieceArea;
+            shownArea += pieceArea;
           } else if (!solidLo) {
             // Empty on both sides: a thin sheet the mesh must show, or a strip thinner than the
             // tolerance left over where boundaries merged, which is within the tolerance already.
@@ -266,22 +267,32 @@ std::vector<Builder::Share> Builder::computeShares(Mesh& complement, SolidStats&
           }
         }
       }
-      if (2 * uncoveredArea > face.area) {
-        const dvec3 tri3[3] = {P0, P1, P2};
-        addComplementPolygon(tri3, 3, material);
-        continue;
-      }
+      if (uncovered.empty()) continue;
       // The uncovered cells joined into rectangles (runs along v, then equal runs of neighbouring
-      // columns), each clipped from the face once: one piece per cell would give the mesh more
-      // triangles than the face it replaces.
+      // columns), each clipped from the face once.
+      std::vector<Polygon2> pieces;
+      int pieceTriangles = 0;
       for (const CellRectangle& r : joinCells(uncovered)) {
         Polygon2 piece = tri;
         clipAxis(piece, 0, U[static_cast<std::size_t>(r.i0)], false);
         clipAxis(piece, 0, U[static_cast<std::size_t>(r.i1 + 1)], true);
         clipAxis(piece, 1, V[static_cast<std::size_t>(r.j0)], false);
         clipAxis(piece, 1, V[static_cast<std::size_t>(r.j1 + 1)], true);
-        if (piece.n >= 3) addComplementPolygon(onFacePlane(piece).data(), piece.n, material);
+        if (piece.n < 3) continue;
+        pieces.push_back(piece);
+        pieceTriangles += piece.n - 2;
       }
+      // The face goes to the mesh whole when that takes fewer triangles than its pieces (a
+      // staircase of cells under a roof left to the mesh cuts a gable into a dozen), or when most
+      // of it is uncovered. Its covered part is then drawn twice, by its cells and by the face
+      // itself, in the face's own material and within the tolerance of the cells' surface.
+      if (pieceTriangles > 1 || 2 * uncoveredArea > face.area) {
+        const dvec3 tri3[3] = {P0, P1, P2};
+        addComplementPolygon(tri3, 3, material);
+        out.drawnTwice += shownArea;
+        continue;
+      }
+      for (const Polygon2& piece : pieces) addComplementPolygon(onFacePlane(piece).data(), piece.n, material);
     }
   });
   std::vector<Share> shares = wedgeShares;
@@ -297,6 +308,7 @@ std::vector<Builder::Share> Builder::computeShares(Mesh& complement, SolidStats&
     area.nutAreaM2 += c.nut;
     area.complementAreaM2 += c.complementArea;
     area.hiddenAreaM2 += c.hidden;
+    area.drawnTwiceAreaM2 += c.drawnTwice;
   }
   // Pieces of neighbouring cells and faces repeat their corners: each is stored once.
   Welded welded = weld(complement.positions, complement.triangles);

@@ -118,6 +118,8 @@ struct SolidStats {
   double nutAreaM2 = 0;               // shown by grid cells (axis-aligned faces, wedges, pyramids, quadrics)
   double complementAreaM2 = 0;        // left to the complementary mesh
   double hiddenAreaM2 = 0;            // between two solid cells: inner faces nobody sees
+  double drawnTwiceAreaM2 = 0;        // of nutAreaM2, also drawn by the complementary mesh (faces
+                                      // given to it whole rather than in many pieces)
   // Seconds per step: planes and grid, occupancy, wedges, materials; the winding-number tree is
   // built within the first step that needs it (treeSeconds of it).
   double planesSeconds = 0, treeSeconds = 0, occupancySeconds = 0, wedgesSeconds = 0, materialsSeconds = 0;
