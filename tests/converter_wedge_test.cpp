@@ -163,18 +163,26 @@ Mesh gableRoof() {
 // The gable roof with its pitches carried 0.5 m past every wall as open sheets (eaves and
 // overhanging gables, as most of Zurich's LoD2 roofs are), and `chimneys` chimneys 0.6 m square
 // rising from inside the house through the -z pitch: each makes two boundaries along x, across
-// the eaves.
+// the eaves. Each pitch is one quad, as LoD2 models draw it, or a grid of `tiles` x `tiles` quads,
+// as tessellated meshes do.
 constexpr double kOverhang = 0.5;
-Mesh overhangingGableRoof(int chimneys) {
-  MeshBuilder b("overhanging_gable_roof_" + std::to_string(chimneys));
+Mesh overhangingGableRoof(int chimneys, int tiles = 1) {
+  MeshBuilder b("overhanging_gable_roof_" + std::to_string(chimneys) + (tiles > 1 ? "_tiled" : ""));
   b.polygon({{0, 0, 0}, {10, 0, 0}, {10, 0, 8}, {0, 0, 8}}, kDown, kWall);
   b.polygon({{0, 0, 0}, {10, 0, 0}, {10, kEaves, 0}, {0, kEaves, 0}}, kSouth, kWall);
   b.polygon({{0, 0, 8}, {10, 0, 8}, {10, kEaves, 8}, {0, kEaves, 8}}, kNorth, kWall);
   b.polygon({{0, 0, 0}, {0, 0, 8}, {0, kEaves, 8}, {0, kRidge, 4}, {0, kEaves, 0}}, kWest, kWall);
   b.polygon({{10, 0, 0}, {10, 0, 8}, {10, kEaves, 8}, {10, kRidge, 4}, {10, kEaves, 0}}, kEast, kWall);
   const double x0 = -kOverhang, x1 = 10 + kOverhang, low = kEaves - 0.75 * kOverhang;
-  b.polygon({{x0, low, -kOverhang}, {x1, low, -kOverhang}, {x1, kRidge, 4}, {x0, kRidge, 4}}, kUp, kRoof);
-  b.polygon({{x0, low, 8 + kOverhang}, {x1, low, 8 + kOverhang}, {x1, kRidge, 4}, {x0, kRidge, 4}}, kUp, kRoof);
+  for (const double eave : {-kOverhang, 8 + kOverhang}) {
+    // Corner (i, j) of the tiling: i along x, j from the eave up to the ridge.
+    const auto at = [&](int i, int j) {
+      const double s = static_cast<double>(i) / tiles, t = static_cast<double>(j) / tiles;
+      return dvec3(x0 + s * (x1 - x0), low + t * (kRidge - low), eave + t * (4 - eave));
+    };
+    for (int i = 0; i < tiles; ++i)
+      for (int j = 0; j < tiles; ++j) b.polygon({at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j + 1)}, kUp, kRoof);
+  }
   for (int c = 0; c < chimneys; ++c) {
     const double a = 1.0 + 1.8 * c, z0 = 1.5, z1 = 2.1, y0 = 4, y1 = kRidge + 1;
     b.polygon({{a, y0, z0}, {a + 0.6, y0, z0}, {a + 0.6, y0, z1}, {a, y0, z1}}, kDown, kWall);
@@ -389,14 +397,17 @@ TEST(Wedges, GableRoofIsAllWedges) {
 // to the complementary mesh: the overhang, a frame 0.5 m wide around the walls (9.5 m^2 in plan
 // per pitch, 1.25 m^2 of surface per m^2 of plan). The boundaries that chimneys add across the
 // eaves cut that frame into more cells, but not into more pieces: neighbouring cells are clipped
-// as one rectangle, so the mesh is the same few triangles with 3 chimneys as with 5 (cut cell by
-// cell it grew with every chimney: 80 and 96 triangles).
+// as one rectangle, so the mesh is the same triangles with 3 chimneys as with 5 (cut cell by
+// cell it grew with every chimney: 80 and 96 triangles with the pitches one quad each). The
+// pitches are tiled 8 x 8 here, so that the overhang's pieces take fewer triangles than a pitch
+// has and the pitches stay wedges (next test).
 TEST(Wedges, AnOverhangGoesToTheMeshInPiecesThatDoNotMultiplyWithTheCells) {
   const double overhang = 2 * (11.0 * 4.5 - 10.0 * 4.0) * 1.25;
   const std::array<int, 2> chimneys{3, 5};
+  constexpr int kTiles = 8;
   std::array<int, 2> triangles{}, cellsAlongX{};
   for (std::size_t n = 0; n < chimneys.size(); ++n) {
-    const Mesh mesh = overhangingGableRoof(chimneys[n]);
+    const Mesh mesh = overhangingGableRoof(chimneys[n], kTiles);
     writeObj(mesh);
     const Conversion c = testing::convertOrFail(mesh);
     const Figures f = measure(mesh, c, {}, mesh.name);
@@ -409,7 +420,25 @@ TEST(Wedges, AnOverhangGoesToTheMeshInPiecesThatDoNotMultiplyWithTheCells) {
   }
   EXPECT_GE(cellsAlongX[1], cellsAlongX[0] + 4);  // the two more chimneys do cut the eaves
   EXPECT_EQ(triangles[1], triangles[0]);
-  EXPECT_LE(triangles[0], 2 * 3 * 2 * 5);  // per pitch 3 rectangles, each over 2 faces, at most 5 triangles a piece
+  EXPECT_LE(triangles[0], 2 * 2 * kTiles * kTiles);  // fewer than the pitches' own triangles
+}
+
+// The same roof with each pitch one quad, as LoD2 models draw it (most of Zurich's): its overhang
+// alone would take the mesh more triangles than the pitch has, so each pitch goes to the mesh whole
+// and its wedges, which would save nothing, are not made; the house under it stays NUT.
+TEST(Wedges, AnOverhangingPitchOfFewFacesGoesToTheMeshWhole) {
+  const Mesh mesh = overhangingGableRoof(3);
+  writeObj(mesh);
+  const Conversion c = testing::convertOrFail(mesh);
+  const SolidStats& s = c.report.solid;
+  const Figures f = measure(mesh, c, {}, mesh.name);
+  EXPECT_GE(f.fidelity.worstWithinPct, 99.0) << "see converter_wedge/" << mesh.name << ".view*.diff.png";
+  EXPECT_EQ(s.slopes, 2);
+  EXPECT_EQ(s.slopesAsWedges, 0);
+  EXPECT_EQ(s.wedgeCells, 0);
+  EXPECT_NEAR(f.meshRoofArea, f.roofArea, 1e-6 * f.roofArea);  // every pitch whole
+  EXPECT_LE(f.meshTriangles, 4 + 2 * 3);                         // the pitches, and at most the gables' fans
+  EXPECT_GE(s.solidCells, 1);
 }
 
 // Without chimneys nothing crosses the eaves, and each pitch has more cells where its sheet has no

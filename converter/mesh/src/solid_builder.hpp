@@ -338,15 +338,16 @@ struct Builder {
   bool solidAt(std::size_t cell, std::span<const dvec3> points) const;
   void trimCutCells(const LazyWinding& winding);
   bool shownByMesh(std::uint32_t face) const;
-  // The parts of slope face f over cells where its plane made no wedge (SlopePlane::failed and
-  // ::partial), which the complementary mesh shows: convex polygons in the grid frame
-  // (solid_occupancy.cpp).
+  // The parts of slope face f over cells where its plane made no wedge (SlopePlane::meshRegions),
+  // which the complementary mesh shows: convex polygons in the grid frame (solid_occupancy.cpp).
   struct MeshPiece {
     std::array<dvec3, 12> p;
     int n = 0;
     double area = 0;
   };
   std::vector<MeshPiece> meshPieces(std::uint32_t face) const;
+  // The same over any rectangles of its plane's cross-section.
+  std::vector<MeshPiece> piecesOver(std::uint32_t face, const std::vector<SlopePlane::Region>& regions) const;
   struct Share {
     std::size_t cell;
     std::uint16_t material;

@@ -295,6 +295,7 @@ bool Builder::fitWedges(const LazyWinding& winding) {
     };
     plane.meshRegions.clear();
     std::vector<std::array<int, 2>> missed;  // cells (u, e) with no wedge, e = -1 for a whole column
+    std::vector<std::array<int, 2>> outline;  // of those, the cells its outline cuts (hips, valleys)
     for (int i = i0; i <= i1 && bad <= good + kWedgeGiveUp; ++i) {
       const double ua = U[static_cast<std::size_t>(i)], ub = U[static_cast<std::size_t>(i + 1)];
       const double va = plane.vAt(ua), vb = plane.vAt(ub);
@@ -327,6 +328,7 @@ bool Builder::fitWedges(const LazyWinding& winding) {
         if (const int covered = coverage(i, k); covered <= 0) {
           if (covered < 0) {
             missed.push_back({i, k});
+            outline.push_back({i, k});
             fail(crossSection);
           }
           continue;
@@ -373,10 +375,30 @@ bool Builder::fitWedges(const LazyWinding& winding) {
                         (options.partialWedges ? bad <= good && badArea <= goodArea : bad == 0);
     // The faces over those cells go to the mesh as few pieces: cells joined into rectangles.
     constexpr double kAll = std::numeric_limits<double>::infinity();
-    if (plane.represented)
-      for (const CellRectangle& r : joinCells(missed))
-        plane.meshRegions.push_back({U[static_cast<std::size_t>(r.i0)], U[static_cast<std::size_t>(r.i1 + 1)],
-                                     r.j0 < 0 ? -kAll : E[static_cast<std::size_t>(r.j0)], r.j0 < 0 ? kAll : E[static_cast<std::size_t>(r.j1 + 1)]});
+    const auto regionsOf = [&](const std::vector<std::array<int, 2>>& cells) {
+      std::vector<SlopePlane::Region> regions;
+      for (const CellRectangle& r : joinCells(cells))
+        regions.push_back({U[static_cast<std::size_t>(r.i0)], U[static_cast<std::size_t>(r.i1 + 1)],
+                           r.j0 < 0 ? -kAll : E[static_cast<std::size_t>(r.j0)], r.j0 < 0 ? kAll : E[static_cast<std::size_t>(r.j1 + 1)]});
+      return regions;
+    };
+    // A slope whose own failures (an eave or overhang with no inside, columns off its diagonal)
+    // would leave the mesh more triangles than its faces have is cheaper shown by the mesh
+    // whole: an overhanging roof of a few large triangles, as most LoD2 roofs are. Cells its
+    // outline cuts (hips, valleys) do not count: they are what a roof of several slopes costs
+    // wherever its faces end, and counting them would give every hip roof to the mesh.
+    if (plane.represented && missed.size() > outline.size()) {
+      std::sort(outline.begin(), outline.end());
+      std::vector<std::array<int, 2>> failed;
+      for (const auto& cell : missed)
+        if (!std::binary_search(outline.begin(), outline.end(), cell)) failed.push_back(cell);
+      const std::vector<SlopePlane::Region> regions = regionsOf(failed);
+      std::size_t triangles = 0;
+      for (const std::uint32_t f : plane.faces)
+        for (const MeshPiece& piece : piecesOver(f, regions)) triangles += static_cast<std::size_t>(piece.n - 2);
+      plane.represented = triangles <= plane.faces.size();
+    }
+    if (plane.represented) plane.meshRegions = regionsOf(missed);
     stats.slopesAsWedges += plane.represented;
     all = all && plane.represented;
   }
@@ -384,11 +406,18 @@ bool Builder::fitWedges(const LazyWinding& winding) {
 }
 
 std::vector<Builder::MeshPiece> Builder::meshPieces(std::uint32_t f) const {
+  const Face& face = faces[f];
+  if (face.kind != FaceKind::Slope) return {};
+  const SlopePlane& plane = slopes[static_cast<std::size_t>(face.group)];
+  if (!plane.represented) return {};
+  return piecesOver(f, plane.meshRegions);
+}
+
+std::vector<Builder::MeshPiece> Builder::piecesOver(std::uint32_t f, const std::vector<SlopePlane::Region>& regions) const {
   std::vector<MeshPiece> out;
   const Face& face = faces[f];
-  if (face.kind != FaceKind::Slope || face.area <= 0) return out;
+  if (face.area <= 0 || regions.empty()) return out;
   const SlopePlane& plane = slopes[static_cast<std::size_t>(face.group)];
-  if (!plane.represented || plane.meshRegions.empty()) return out;
   const int e = plane.e, u = kU[e], v = kV[e];
   const dvec3 P[3] = {corner(f, 0), corner(f, 1), corner(f, 2)};
   Polygon2 tri;
@@ -401,7 +430,7 @@ std::vector<Builder::MeshPiece> Builder::meshPieces(std::uint32_t f) const {
   // The face's own plane lifts the pieces back to 3D (its normal is off v by more than the angle tolerance).
   const dvec3 normal = face.areaVector / face.area;
   const double d = glm::dot(normal, P[0]);
-  for (const SlopePlane::Region& r : plane.meshRegions) {
+  for (const SlopePlane::Region& r : regions) {
     if (r.u1 <= uLo || r.u0 >= uHi || r.e1 <= eLo || r.e0 >= eHi) continue;
     Polygon2 piece = tri;
     clipAxis(piece, 0, r.u0, false);
