@@ -295,7 +295,8 @@ bool Builder::fitWedges(const LazyWinding& winding) {
     };
     plane.meshRegions.clear();
     std::vector<std::array<int, 2>> missed;  // cells (u, e) with no wedge, e = -1 for a whole column
-    std::vector<std::array<int, 2>> outline;  // of those, the cells its outline cuts (hips, valleys)
+    // Of those, the slope's own failures: all but the cells its outline cuts (hips, valleys).
+    std::vector<std::array<int, 2>> ownFailures;
     for (int i = i0; i <= i1 && bad <= good + kWedgeGiveUp; ++i) {
       const double ua = U[static_cast<std::size_t>(i)], ub = U[static_cast<std::size_t>(i + 1)];
       const double va = plane.vAt(ua), vb = plane.vAt(ub);
@@ -308,6 +309,7 @@ bool Builder::fitWedges(const LazyWinding& winding) {
         if (!reached) continue;
         // Cut off the diagonal: centre classification stands, for every cell along e.
         missed.push_back({i, -1});
+        ownFailures.push_back({i, -1});
         bad += k1 - k0 + 1;
         badArea += (ub - ua) * (E[static_cast<std::size_t>(k1 + 1)] - E[static_cast<std::size_t>(k0)]);
         continue;
@@ -322,13 +324,13 @@ bool Builder::fitWedges(const LazyWinding& winding) {
         const double crossSection = (ub - ua) * (eb - ea);
         if (ea < plane.e0 - tol || eb > plane.e1 + tol) {
           missed.push_back({i, k});
+          ownFailures.push_back({i, k});
           fail(crossSection);
           continue;
         }
         if (const int covered = coverage(i, k); covered <= 0) {
           if (covered < 0) {
             missed.push_back({i, k});
-            outline.push_back({i, k});
             fail(crossSection);
           }
           continue;
@@ -357,6 +359,7 @@ bool Builder::fitWedges(const LazyWinding& winding) {
             pass(crossSection);
           } else {
             missed.push_back({i, k});
+            ownFailures.push_back({i, k});
             fail(crossSection);
           }
           continue;
@@ -387,12 +390,8 @@ bool Builder::fitWedges(const LazyWinding& winding) {
     // whole: an overhanging roof of a few large triangles, as most LoD2 roofs are. Cells its
     // outline cuts (hips, valleys) do not count: they are what a roof of several slopes costs
     // wherever its faces end, and counting them would give every hip roof to the mesh.
-    if (plane.represented && missed.size() > outline.size()) {
-      std::sort(outline.begin(), outline.end());
-      std::vector<std::array<int, 2>> failed;
-      for (const auto& cell : missed)
-        if (!std::binary_search(outline.begin(), outline.end(), cell)) failed.push_back(cell);
-      const std::vector<SlopePlane::Region> regions = regionsOf(failed);
+    if (plane.represented && !ownFailures.empty()) {
+      const std::vector<SlopePlane::Region> regions = regionsOf(ownFailures);
       std::size_t triangles = 0;
       for (const std::uint32_t f : plane.faces)
         for (const MeshPiece& piece : piecesOver(f, regions)) triangles += static_cast<std::size_t>(piece.n - 2);
