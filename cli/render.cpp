@@ -1,29 +1,29 @@
-// `nut render IN.png -o OUT.png`: ray-casts an HNI with the CPU reference ray caster, or with the
-// GLSL ray caster (`--backend gl`), optionally with a complementary mesh in the same image.
+// `nut render IN.png -o OUT.png`: ray-casts an HNI, or the buildings of a city manifest, with the
+// CPU reference ray caster or the GLSL ray caster (`--backend gl`), with their complementary meshes
+// and any --mesh in the same image.
 #include <chrono>
 #include <cstdio>
 #include <memory>
-#include <optional>
 #include <string>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
-#include <meshref/obj.hpp>
-#include <nut/hni.hpp>
-#include <nut/mesh_export.hpp>
 #include <nut/png_io.hpp>
 #include <nut/raycast.hpp>
 
 #include "camera_options.hpp"
 #include "commands.hpp"
 #include "gl_backend.hpp"
+#include "render_scene.hpp"
 
 namespace nut::cli {
 
 namespace {
 
 struct RenderOptions {
-  std::string input, output, depth, stats, backend = "cpu", lookup = "exact", mesh;
+  std::string input, output, depth, stats, backend = "cpu", lookup = "exact";
+  std::vector<std::string> meshes;
   CameraOptions camera;
   GlOptions gl;
   double lodPx = 0;
@@ -32,37 +32,10 @@ struct RenderOptions {
 };
 
 int run(RenderOptions o) {
-  auto png = readPng(o.input);
-  if (!png) {
-    std::fprintf(stderr, "error: %s\n", png.error().message.c_str());
-    return kUnreadable;
-  }
-  if (Status s = validate(png->image); !s) {
-    std::fprintf(stderr, "error: %s: invalid HNI: %s\n", o.input.c_str(), s.error().message.c_str());
-    return kInvalid;
-  }
-  const HniRayCaster caster(png->image, png->text.originM);
-  // The default camera fits the solid content, as `nut render-mesh` fits the exported mesh.
-  auto hierarchy = decode(png->image);
-  auto bounds = hierarchy ? contentBounds(*hierarchy, png->text.originM) : Result<WorldBox>(hierarchy.error());
-  if (!bounds) {
-    std::fprintf(stderr, "error: %s: %s\n", o.input.c_str(), bounds.error().message.c_str());
-    return kInvalid;
-  }
-  // A complementary mesh (--mesh) is part of the scene the default camera fits.
-  std::optional<meshref::TriangleMesh> extra;
-  if (!o.mesh.empty()) {
-    auto mesh = meshref::readObj(o.mesh);
-    if (!mesh) {
-      std::fprintf(stderr, "error: %s\n", mesh.error().message.c_str());
-      return kInvalid;
-    }
-    for (const std::string& warning : mesh->warnings) std::fprintf(stderr, "warning: %s\n", warning.c_str());
-    bounds->min = glm::min(bounds->min, mesh->bounds.min);
-    bounds->max = glm::max(bounds->max, mesh->bounds.max);
-    extra = std::move(*mesh);
-  }
-  auto camera = o.camera.resolve(*bounds);
+  RenderScene scene;
+  if (int code = loadRenderScene(o.input, o.meshes, scene); code != kOk) return code;
+  // The default camera fits the solid content and the meshes, as `nut render-mesh` fits a mesh.
+  auto camera = o.camera.resolve(scene.bounds);
   if (!camera) {
     std::fprintf(stderr, "error: %s\n", camera.error().message.c_str());
     return kUsage;
@@ -72,7 +45,9 @@ int run(RenderOptions o) {
   options.lodPx = o.lodPx;
   options.maxIterations = o.maxIterations;
   RenderStats stats;
-  std::fprintf(stderr, "render: %s, %dx%d, %s lookup\n", o.input.c_str(), camera->width, camera->height, o.lookup.c_str());
+  std::fprintf(stderr, "render: %s (%zu HNI%s, %zu mesh%s), %dx%d, %s lookup\n", o.input.c_str(), scene.hnis.size(),
+               scene.hnis.size() == 1 ? "" : "s", scene.meshes.size(), scene.meshes.size() == 1 ? "" : "es", camera->width,
+               camera->height, o.lookup.c_str());
   RenderOutput frame;
   if (o.backend == "gl") {
     auto gl = o.gl.open();
@@ -81,8 +56,11 @@ int run(RenderOptions o) {
       return kUnreadable;
     }
     std::fprintf(stderr, "render: GL %s: %s\n", o.gl.context.c_str(), (*gl)->context().description().c_str());
-    Status added = (*gl)->addHni(png->image, png->text.originM);
-    if (added && extra) added = (*gl)->addMesh(toMeshData(*extra));
+    Status added = Ok{};
+    for (const meshref::PlacedHni& hni : scene.hnis)
+      if (added) added = (*gl)->addHni(*hni.image, hni.originM, hni.worldFromRoot);
+    for (const meshref::TriangleMesh& mesh : scene.meshes)
+      if (added) added = (*gl)->addMesh(toMeshData(mesh));
     if (!added) {
       std::fprintf(stderr, "error: %s\n", added.error().message.c_str());
       return kInvalid;
@@ -97,8 +75,18 @@ int run(RenderOptions o) {
     viewer::GlFrame gpu = (*gl)->read(*camera);
     frame.colour = std::move(gpu.colour);
     frame.distanceM = std::move(gpu.distanceM);
+  } else if (scene.hnis.size() == 1 && scene.meshes.empty()) {
+    // One HNI alone keeps its translucent cells' tint over the background, which a scene of
+    // several objects does not (meshref/scene_render.hpp).
+    const meshref::PlacedHni& hni = scene.hnis.front();
+    frame = renderHni(HniRayCaster(*hni.image, hni.originM, hni.worldFromRoot), *camera, options, o.threads, &stats);
   } else {
-    frame = renderHni(caster, *camera, options, o.threads, &stats);
+    auto renderer = meshref::SceneRenderer::create(scene.hnis, scene.meshPointers());
+    if (!renderer) {
+      std::fprintf(stderr, "error: %s\n", renderer.error().message.c_str());
+      return kUnreadable;
+    }
+    frame = renderer->render(*camera, options, o.threads, &stats);
   }
   if (Status s = writePng(o.output, frame.colour); !s) {
     std::fprintf(stderr, "error: %s\n", s.error().message.c_str());
@@ -138,14 +126,14 @@ int run(RenderOptions o) {
 void addRenderCommand(CLI::App& app, int& exitCode) {
   auto o = std::make_shared<RenderOptions>();
   CLI::App* cmd = app.add_subcommand("render", "Ray-cast an HNI into an image");
-  cmd->add_option("input", o->input, "HNI image (PNG)")->required();
+  cmd->add_option("input", o->input, "HNI image (PNG), or a city manifest (city.json: every building with its complementary mesh)")->required();
   cmd->add_option("-o,--output", o->output, "Output image (PNG)")->required();
   o->camera.addTo(*cmd);
   cmd->add_option("--backend", o->backend, "Renderer: cpu (the reference ray caster) or gl (the GLSL ray caster)")
       ->check(CLI::IsMember({"cpu", "gl"}))
       ->default_val("cpu");
   o->gl.addTo(*cmd);
-  cmd->add_option("--mesh", o->mesh, "A complementary mesh (OBJ) drawn with the HNI in one depth-tested image (--backend gl)");
+  cmd->add_option("--mesh", o->meshes, "A mesh (OBJ; a complementary mesh) drawn with the HNI in one image, nearest surface in front (repeatable)");
   cmd->add_option("--lod-px", o->lodPx, "Use visual summaries for redirection cells smaller than this many pixels (0: full detail)")
       ->check(CLI::NonNegativeNumber);
   cmd->add_option("--max-iter", o->maxIterations, "Iteration cap per ray (capped rays are magenta)")
@@ -161,15 +149,9 @@ void addRenderCommand(CLI::App& app, int& exitCode) {
   cmd->add_option("--threads", o->threads, "Worker threads (0: all cores)")->check(CLI::NonNegativeNumber);
   cmd->footer("Examples:\n  nut render samples/hni/building.png -o building.png --size 1280x720 --stats stats.json\n"
               "  nut render samples/hni/building.png -o building-gl.png --backend gl --gl egl\n"
-              "  nut render house.png -o house.png --backend gl --mesh house-complement.obj");
-  cmd->callback([o, &exitCode] {
-    if (!o->mesh.empty() && o->backend != "gl") {
-      std::fprintf(stderr, "error: --mesh needs --backend gl (see nut render --help)\n");
-      exitCode = kUsage;
-      return;
-    }
-    exitCode = run(*o);
-  });
+              "  nut render carpark.png -o carpark-render.png --mesh carpark-rest.obj\n"
+              "  nut render street/city.json -o street.png        # after nut convert street.obj -o street/");
+  cmd->callback([o, &exitCode] { exitCode = run(*o); });
 }
 
 }  // namespace nut::cli

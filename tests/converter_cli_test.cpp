@@ -1,7 +1,8 @@
 // `nut convert` as a user runs it: outputs (HNI with the world origin, complementary mesh, report
 // JSON), one HNI per object and city.json with -o FOLDER, the progress bar's absence with --quiet,
 // manual blocks, and the exit codes: 2 for unreadable input, 1 for invalid input or usage; and the
-// commands users look at the result with: `nut render`'s default lookup, `nut info --blocks --bytes`.
+// commands users look at the result with: `nut render` (its default lookup, an HNI with its
+// complementary mesh, a city manifest), `nut info --blocks --bytes`.
 #include <gtest/gtest.h>
 
 #include <cstdio>
@@ -15,6 +16,7 @@
 #include <nlohmann/json.hpp>
 
 #include <converter/city.hpp>
+#include <meshref/image_compare.hpp>
 #include <nut/hni.hpp>
 #include <nut/png_io.hpp>
 
@@ -182,6 +184,79 @@ TEST(RenderCli, DefaultLookupIsExactOnBothBackends) {
           out("render-gl-heuristic.json"));
   ASSERT_EQ(r.exitCode, 0) << r.stderrText;
   EXPECT_EQ(lookupOf(out("render-gl-heuristic.json")), "heuristic");
+}
+
+// Percentage of pixels of two renders (PNG files) within 8/255.
+double withinPct(const std::string& a, const std::string& b) {
+  auto x = readPng(a), y = readPng(b);
+  if (!x || !y) return 0.0;
+  auto diff = meshref::compareImages(x->image, y->image, 8);
+  return diff ? 100.0 - diff->differingPct : 0.0;
+}
+
+// `nut render --mesh` on the CPU back-end: the complementary mesh is drawn with the HNI, nearest
+// surface in front, so that the pair renders like the source mesh (the car park's ramps are in
+// its complementary mesh).
+TEST(RenderCli, AnHniWithItsComplementaryMeshRendersLikeTheSource) {
+  CliRun r = nut("convert " + sample("carpark.obj") + " -o " + out("carpark-r.png") + " --complement " + out("carpark-r-rest.obj") + " --quiet");
+  ASSERT_EQ(r.exitCode, 0) << r.stderrText;
+  r = nut("render-mesh " + sample("carpark.obj") + " -o " + out("carpark-r-source.png") + " --size 640x360");
+  ASSERT_EQ(r.exitCode, 0) << r.stderrText;
+  r = nut("render " + out("carpark-r.png") + " -o " + out("carpark-r-alone.png") + " --size 640x360");
+  ASSERT_EQ(r.exitCode, 0) << r.stderrText;
+  r = nut("render " + out("carpark-r.png") + " --mesh " + out("carpark-r-rest.obj") + " -o " + out("carpark-r-with.png") + " --size 640x360");
+  ASSERT_EQ(r.exitCode, 0) << r.stderrText;
+  const double alone = withinPct(out("carpark-r-alone.png"), out("carpark-r-source.png"));
+  const double with = withinPct(out("carpark-r-with.png"), out("carpark-r-source.png"));
+  std::printf("carpark 640x360 within 8/255 of the source: HNI alone %.3f %%, with --mesh %.3f %%\n", alone, with);
+  EXPECT_GE(with, 99.9);
+  EXPECT_GT(100.0 - alone, 3 * (100.0 - with));  // the ramps are missing without the mesh
+}
+
+// `nut render city.json`: every building of a converted street with its complementary mesh, where
+// the manifest puts it, like the source street; the GL back-end draws the same scene.
+TEST(RenderCli, ACityManifestRendersLikeItsSourceOnBothBackends) {
+  fs::remove_all(out("street-city"));
+  CliRun r = nut("convert " + sample("street.obj") + " -o " + out("street-city") + "/ --quiet");
+  ASSERT_EQ(r.exitCode, 0) << r.stderrText;
+  const std::string city = out("street-city") + "/city.json";
+  r = nut("render " + city + " -o " + out("street-city-cpu.png") + " --size 640x360");
+  ASSERT_EQ(r.exitCode, 0) << r.stderrText;
+  EXPECT_NE(r.stderrText.find("4 HNIs, 4 meshes"), std::string::npos) << r.stderrText;
+  r = nut("render " + city + " -o " + out("street-city-gl.png") + " --size 640x360 --backend gl");
+  ASSERT_EQ(r.exitCode, 0) << r.stderrText;
+  r = nut("render-mesh " + sample("street.obj") + " -o " + out("street-source.png") + " --size 640x360");
+  ASSERT_EQ(r.exitCode, 0) << r.stderrText;
+  const double cpu = withinPct(out("street-city-cpu.png"), out("street-source.png"));
+  const double gl = withinPct(out("street-city-gl.png"), out("street-city-cpu.png"));
+  std::printf("street as a city, 640x360 within 8/255: CPU vs source %.3f %%, GL vs CPU %.3f %%\n", cpu, gl);
+  EXPECT_GE(cpu, 99.9);
+  EXPECT_GE(gl, 99.9);
+}
+
+TEST(RenderCli, ABadManifestFailsNamingWhere) {
+  fs::create_directories(out("bad-city"));
+  {
+    std::ofstream(out("bad-city/missing.json"))
+        << R"({"format": "nut-city", "version": 1, "buildings": [{"name": "a", "hni": "a.png", "position_m": [0, 0, 0]}]})";
+    std::ofstream(out("bad-city/empty.json")) << R"({"format": "nut-city", "version": 1, "buildings": []})";
+    std::ofstream(out("bad-city/outside.json"))
+        << R"({"format": "nut-city", "version": 1, "buildings": [{"name": "a", "hni": "../a.png", "position_m": [0, 0, 0]}]})";
+    std::ofstream(out("bad-city/broken.json")) << R"({"format": "nut-city", )";
+  }
+  CliRun r = nut("render " + out("bad-city/missing.json") + " -o " + out("bad-city/x.png"));
+  EXPECT_EQ(r.exitCode, 2);
+  EXPECT_NE(r.stderrText.find("error: " + out("bad-city") + "/a.png"), std::string::npos) << r.stderrText;
+  r = nut("render " + out("bad-city/empty.json") + " -o " + out("bad-city/x.png"));
+  EXPECT_EQ(r.exitCode, 1);
+  EXPECT_NE(r.stderrText.find("empty.json: the manifest lists no buildings"), std::string::npos) << r.stderrText;
+  r = nut("render " + out("bad-city/outside.json") + " -o " + out("bad-city/x.png"));
+  EXPECT_EQ(r.exitCode, 1);
+  EXPECT_NE(r.stderrText.find("outside.json: building 0 (a): \"hni\" must be a relative path inside"), std::string::npos) << r.stderrText;
+  r = nut("render " + out("bad-city/broken.json") + " -o " + out("bad-city/x.png"));
+  EXPECT_EQ(r.exitCode, 1);
+  EXPECT_NE(r.stderrText.find("broken.json: not valid JSON"), std::string::npos) << r.stderrText;
+  EXPECT_FALSE(fs::exists(out("bad-city/x.png")));
 }
 
 // `nut info --blocks --bytes`, with which users see where an HNI's bytes go.

@@ -11,6 +11,7 @@
 #include <cmath>
 #include <limits>
 
+#include <glm/common.hpp>
 #include <glm/geometric.hpp>
 #include <glm/matrix.hpp>
 
@@ -164,8 +165,8 @@ glm::vec3 entryNormalWorld(const Level& L) {
 int argMin(const glm::vec3& v) { return v.x <= v.y ? (v.x <= v.z ? 0 : 2) : (v.y <= v.z ? 1 : 2); }
 }  // namespace
 
-HniRayCaster::HniRayCaster(const Image& image, const glm::dvec3& originM)
-    : image_(image), view_(image), originM_(originM), blockByHeader_(256 * 256, -1) {
+HniRayCaster::HniRayCaster(const Image& image, const glm::dvec3& originM, const glm::dmat3& worldFromRoot)
+    : image_(image), view_(image), originM_(originM), rootFromWorld_(glm::transpose(worldFromRoot)), blockByHeader_(256 * 256, -1) {
   file_ = view_.fileRecord();
   for (int b = 0; b < file_.blockCount; ++b) {
     const TexelAddress at = view_.blockAddress(file_, b);
@@ -202,8 +203,15 @@ int HniRayCaster::blockAt(TexelAddress header) const {
 }
 
 WorldBox HniRayCaster::bounds() const {
-  const glm::ivec3 size = blocks_[static_cast<std::size_t>(root_)].header.sizeUnits;
-  return {originM_, originM_ + glm::dvec3(size) * format::kMetresPerUnit};
+  const glm::dvec3 size = glm::dvec3(blocks_[static_cast<std::size_t>(root_)].header.sizeUnits) * format::kMetresPerUnit;
+  const glm::dmat3 worldFromRoot = glm::transpose(rootFromWorld_);
+  WorldBox box{originM_, originM_};
+  for (int c = 0; c < 8; ++c) {
+    const glm::dvec3 corner = originM_ + worldFromRoot * (size * glm::dvec3(c & 1, (c >> 1) & 1, (c >> 2) & 1));
+    box.min = glm::min(box.min, corner);
+    box.max = glm::max(box.max, corner);
+  }
+  return box;
 }
 
 RayResult HniRayCaster::trace(const glm::dvec3& originM, const glm::dvec3& direction, double pixelAngle,
@@ -221,11 +229,11 @@ RayResult HniRayCaster::traceWith(const glm::dvec3& originM, const glm::dvec3& d
   int top = 0;
   Level& root = stack[0];
   root.block = root_;
-  root.toWorld = glm::mat3(1.0f);
+  root.toWorld = glm::mat3(glm::transpose(rootFromWorld_));
   root.wrap = 0;
   // The subtraction happens in double: world coordinates may be near 10^6 m (city origins).
-  root.o = glm::vec3((originM - originM_) / format::kMetresPerUnit);
-  setDirection(root, glm::vec3(direction));
+  root.o = glm::vec3(rootFromWorld_ * (originM - originM_) / format::kMetresPerUnit);
+  setDirection(root, glm::vec3(rootFromWorld_ * direction));
   // A camera inside the root box sees what is in front of it: the entry "face" faces the ray.
   float t = land<mode>(root, blocks_[static_cast<std::size_t>(root_)], 0.0f, kInfinity, -glm::vec3(direction));
   if (t < 0) return result;  // misses the root box: background
@@ -343,8 +351,7 @@ RayResult HniRayCaster::traceWith(const glm::dvec3& originM, const glm::dvec3& d
   return result;
 }
 
-RenderOutput renderHni(const HniRayCaster& caster, const Camera& camera, const RayCastOptions& options, int threads,
-                       RenderStats* stats) {
+RenderOutput renderRays(const Camera& camera, const RayFunction& trace, int threads, RenderStats* stats) {
   const auto start = std::chrono::steady_clock::now();
   RenderOutput out;
   out.colour = Image(camera.width, camera.height);
@@ -357,7 +364,7 @@ RenderOutput renderHni(const HniRayCaster& caster, const Camera& camera, const R
   std::atomic<long long> cappedRays{0};
   const int count = forEachPixelInTiles(camera.width, camera.height, threads, [&](int x, int y) {
     const glm::dvec3 dir = rays.direction(x, y);
-    const RayResult r = caster.trace(camera.eye, dir, pixelAngle, options);
+    const RayResult r = trace(camera.eye, dir, pixelAngle);
     const std::size_t i = static_cast<std::size_t>(y) * static_cast<std::size_t>(camera.width) + static_cast<std::size_t>(x);
     std::uint8_t* p = out.colour.at(x, y);
     p[0] = r.colour[0], p[1] = r.colour[1], p[2] = r.colour[2], p[3] = 255;
@@ -380,6 +387,13 @@ RenderOutput renderHni(const HniRayCaster& caster, const Camera& camera, const R
     stats->threads = count;
   }
   return out;
+}
+
+RenderOutput renderHni(const HniRayCaster& caster, const Camera& camera, const RayCastOptions& options, int threads,
+                       RenderStats* stats) {
+  return renderRays(
+      camera, [&](const glm::dvec3& eye, const glm::dvec3& dir, double pixelAngle) { return caster.trace(eye, dir, pixelAngle, options); },
+      threads, stats);
 }
 
 }  // namespace nut

@@ -1,11 +1,10 @@
 // Rendering and comparison of conversions against their source (converter_fidelity.hpp).
 #include "converter_fidelity.hpp"
 
-#include <limits>
-
 #include <glm/geometric.hpp>
 
 #include <meshref/embree_renderer.hpp>
+#include <meshref/scene_render.hpp>
 #include <nut/png_io.hpp>
 #include <nut/raycast.hpp>
 
@@ -41,33 +40,17 @@ std::vector<Camera> fidelityViews(const WorldBox& box, int width, int height) {
 }
 
 Image renderConversions(const std::vector<const Conversion*>& conversions, const Camera& camera) {
-  Image out(camera.width, camera.height);
-  std::vector<float> nearest(static_cast<std::size_t>(camera.width) * static_cast<std::size_t>(camera.height),
-                             std::numeric_limits<float>::infinity());
-  for (std::size_t i = 0; i < out.pixels.size(); i += 4) {
-    out.pixels[i] = kBackground[0];
-    out.pixels[i + 1] = kBackground[1];
-    out.pixels[i + 2] = kBackground[2];
-    out.pixels[i + 3] = 255;
-  }
-  const auto keepNearer = [&](const Image& colour, const std::vector<float>& distance) {
-    for (std::size_t p = 0; p < nearest.size(); ++p)
-      if (distance[p] < nearest[p]) {
-        nearest[p] = distance[p];
-        for (int c = 0; c < 3; ++c) out.pixels[4 * p + static_cast<std::size_t>(c)] = colour.pixels[4 * p + static_cast<std::size_t>(c)];
-      }
-  };
+  std::vector<meshref::PlacedHni> hnis;
+  std::vector<meshref::TriangleMesh> complements;
   for (const Conversion* conversion : conversions) {
-    const HniRayCaster caster(conversion->image, conversion->originM);
-    const RenderOutput frame = renderHni(caster, camera, RayCastOptions{});
-    keepNearer(frame.colour, frame.distanceM);
-    if (conversion->complement.triangles.empty()) continue;
-    auto renderer = meshref::EmbreeRenderer::create(toTriangleMesh(conversion->complement));
-    if (!renderer) continue;
-    const meshref::MeshRenderOutput mesh = renderer->render(camera);
-    keepNearer(mesh.colour, mesh.distanceM);
+    hnis.push_back({&conversion->image, conversion->originM, glm::dmat3(1.0)});
+    if (!conversion->complement.triangles.empty()) complements.push_back(toTriangleMesh(conversion->complement));
   }
-  return out;
+  std::vector<const meshref::TriangleMesh*> meshes;
+  for (const meshref::TriangleMesh& m : complements) meshes.push_back(&m);
+  auto scene = meshref::SceneRenderer::create(hnis, meshes);
+  if (!scene) return Image(camera.width, camera.height);  // all black: the comparison fails
+  return scene->render(camera, RayCastOptions{}).colour;
 }
 
 Image renderMesh(const Mesh& mesh, const Camera& camera) {

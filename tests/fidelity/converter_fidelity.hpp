@@ -23,7 +23,7 @@ meshref::TriangleMesh toTriangleMesh(const Mesh& mesh);
 std::vector<Camera> fidelityViews(const WorldBox& box, int width, int height);
 
 // Every conversion's HNI ray-cast on the CPU (heuristic lookup) and its complementary mesh traced
-// with Embree, keeping at each pixel the nearest surface.
+// with Embree, as one scene (meshref/scene_render.hpp): each pixel shows the nearest surface.
 Image renderConversions(const std::vector<const Conversion*>& conversions, const Camera& camera);
 
 // The source mesh traced with Embree.

@@ -10,6 +10,7 @@
 
 #include <array>
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 #include <glm/mat3x3.hpp>
@@ -50,10 +51,12 @@ struct RayResult {
 // A prepared HNI: the image (kept by reference) and its block headers, decoded once.
 class HniRayCaster {
  public:
-  // The image must be valid (validate()); originM is the world position of the root block origin.
-  HniRayCaster(const Image& image, const glm::dvec3& originM);
+  // The image must be valid (validate()); originM is the world position of the root block origin,
+  // and worldFromRoot turns the root block's axes into the world's (a rotation: a city manifest's
+  // yaw_deg, docs/CITY.md), about that origin.
+  HniRayCaster(const Image& image, const glm::dvec3& originM, const glm::dmat3& worldFromRoot = glm::dmat3(1.0));
 
-  // World bounding box of the root block.
+  // World bounding box of the root block (of its turned corners).
   WorldBox bounds() const;
 
   // One ray: world origin and unit direction; pixelAngle is the angle one pixel subtends (radians),
@@ -90,6 +93,7 @@ class HniRayCaster {
   const Image& image_;
   HniView view_;
   glm::dvec3 originM_;
+  glm::dmat3 rootFromWorld_;  // the transpose of worldFromRoot: rays into the root's frame
   std::vector<Block> blocks_;
   std::vector<int> blockByHeader_;  // 256 * v + u -> index into blocks_, or -1
   std::vector<Redirect> redirects_;
@@ -114,8 +118,15 @@ struct RenderStats {
   int threads = 0;
 };
 
+// One ray of a renderer: world origin, unit direction and the angle one pixel subtends.
+using RayFunction = std::function<RayResult(const glm::dvec3& originM, const glm::dvec3& direction, double pixelAngle)>;
+
 // Renders every pixel of the camera's image with `threads` threads (0 = all cores), in 16x16 tiles
-// handed out in order; the output does not depend on the thread count.
+// handed out in order, by casting its ray with `trace`; the output does not depend on the thread
+// count.
+RenderOutput renderRays(const Camera& camera, const RayFunction& trace, int threads = 0, RenderStats* stats = nullptr);
+
+// renderRays with the caster.
 RenderOutput renderHni(const HniRayCaster& caster, const Camera& camera, const RayCastOptions& options,
                        int threads = 0, RenderStats* stats = nullptr);
 

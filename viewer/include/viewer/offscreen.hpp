@@ -47,7 +47,7 @@ class OffscreenRenderer {
   ~OffscreenRenderer();
 
   // Adds an HNI with its root block's minimum corner at originM and its axes turned by
-  // worldFromRoot (a rotation; the CPU caster knows only the identity); fails when validate()
+  // worldFromRoot (a rotation, as for nut::HniRayCaster); fails when validate()
   // rejects the image.
   Status addHni(const Image& hni, const glm::dvec3& originM, const glm::dmat3& worldFromRoot = glm::dmat3(1.0));
   // Adds a mesh (world metres).
