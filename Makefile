@@ -1,6 +1,6 @@
 # The two commands of the README, and the ones behind them.
-#   make demo   install deps, build, write the sample HNIs, their reports and renders, and two
-#               converted OBJ samples beside their meshes, under out/
+#   make demo   install deps, build, write the sample HNIs, their reports and renders, and three
+#               converted OBJ samples (two buildings, a street as a city) beside their meshes, under out/
 #   make test   install deps, build, run the whole test suite (ctest) and a short fuzz run
 #   make bench  run the benchmarks (Release build)
 #   make fuzz   run the libFuzzer target longer: make fuzz FUZZ_SECONDS=600

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # The demo: builds the sample hierarchies by hand through the API, compiles them to HNIs, reports
 # on each one and ray-casts it with the CPU reference ray caster; then converts two of the sample
-# OBJ buildings and compares their renders with the source meshes' from the same camera.
+# OBJ buildings and a street of four (into a folder with a city manifest) and compares their
+# renders with the source meshes' from the same camera.
 # Usage: scripts/demo.sh BUILD_DIR OUT_DIR
 set -euo pipefail
 build=${1:-build}
@@ -23,7 +24,15 @@ for name in house highrise; do
   "$build/cli/nut" render-mesh "$obj" -o "$out/convert/$name-mesh.png"
   "$build/cli/nut" compare "$out/convert/$name-nut.png" "$out/convert/$name-mesh.png" --diff "$out/convert/$name-diff.png"
 done
+# A file of several buildings: one HNI (and complementary mesh) per building and a city manifest,
+# rendered whole and compared with the source street.
+rm -rf "$out/convert/street"
+"$build/cli/nut" convert "$root/samples/obj/street.obj" -o "$out/convert/street/" --report "$out/convert/street.json"
+"$build/cli/nut" render "$out/convert/street/city.json" -o "$out/convert/street-nut.png"
+"$build/cli/nut" render-mesh "$root/samples/obj/street.obj" -o "$out/convert/street-mesh.png"
+"$build/cli/nut" compare "$out/convert/street-nut.png" "$out/convert/street-mesh.png" --diff "$out/convert/street-diff.png"
 echo
 echo "demo: HNIs and their reports (JSON) are in $out/hni/, renders (1280x720, CPU ray caster) in $out/render/"
 echo "demo: converted OBJ samples in $out/convert/: NAME.png (HNI), NAME.json (report), NAME-nut.png and"
-echo "      NAME-mesh.png (the HNI and its source mesh from the same camera), NAME-diff.png (their difference)"
+echo "      NAME-mesh.png (the HNI and its source mesh from the same camera), NAME-diff.png (their difference);"
+echo "      street/ holds one HNI per building and city.json, which street-nut.png renders whole"

@@ -9,7 +9,8 @@
 //
 // Limit: a translucent surface tints only what lies behind it in its own HNI or mesh. Where
 // nothing of its own is behind it, the pixel shows the next object's nearest opaque surface
-// untinted, or the background. The GL back-end has the same kind of limit (docs/GL.md, "Limits").
+// untinted, or the background. (The GL back-end blends translucent meshes over everything and
+// has a narrower limit of its own: docs/GL.md, "Limits".)
 #pragma once
 
 #include <memory>
