@@ -30,23 +30,34 @@ void include(WorldBox& bounds, const glm::dvec3& p) {
 
 // Reads, checks and places one HNI; `where` names it in errors (the file, or the manifest's
 // building). The manifest's position is the one used; the file's own origin is the same when the
-// converter wrote both (docs/CITY.md).
+// converter wrote both (docs/CITY.md). A file placed several times is read once: its instances
+// share the image (and the ray caster, meshref::SceneRenderer).
 int addHni(RenderScene& scene, const std::string& path, const std::string& where, const glm::dvec3* positionM,
            double yawDeg) {
-  auto png = readPng(path);
-  if (!png) return fail(png.error().message, kUnreadable);
-  if (Status s = validate(png->image); !s) return fail(where + ": invalid HNI: " + s.error().message, kInvalid);
-  const glm::dvec3 origin = positionM ? *positionM : png->text.originM;
-  auto hierarchy = decode(png->image);
-  auto content = hierarchy ? contentBounds(*hierarchy, origin) : Result<WorldBox>(hierarchy.error());
-  if (!content) return fail(where + ": " + content.error().message, kInvalid);
+  const std::string key = std::filesystem::absolute(path).lexically_normal().string();
+  auto loaded = scene.loaded.find(key);
+  if (loaded == scene.loaded.end()) {
+    auto png = readPng(path);
+    if (!png) return fail(png.error().message, kUnreadable);
+    if (Status s = validate(png->image); !s) return fail(where + ": invalid HNI: " + s.error().message, kInvalid);
+    const glm::dvec3 origin = positionM ? *positionM : png->text.originM;
+    auto hierarchy = decode(png->image);
+    auto content = hierarchy ? contentBounds(*hierarchy, origin) : Result<WorldBox>(hierarchy.error());
+    if (!content) return fail(where + ": " + content.error().message, kInvalid);
+    scene.files.push_back(std::move(*png));
+    const RenderScene::LoadedHni file{scene.files.size() - 1, {content->min - origin, content->max - origin}};
+    loaded = scene.loaded.emplace(key, file).first;
+  }
+  const std::size_t index = loaded->second.file;
+  const glm::dvec3 origin = positionM ? *positionM : scene.files[index].text.originM;
+  const WorldBox& content = loaded->second.contentFromOrigin;
   const glm::dmat3 turn = meshref::yawRotation(yawDeg);
   for (int c = 0; c < 8; ++c) {
-    const glm::dvec3 corner(c & 1 ? content->max.x : content->min.x, c & 2 ? content->max.y : content->min.y,
-                            c & 4 ? content->max.z : content->min.z);
-    include(scene.bounds, origin + turn * (corner - origin));
+    const glm::dvec3 corner(c & 1 ? content.max.x : content.min.x, c & 2 ? content.max.y : content.min.y,
+                            c & 4 ? content.max.z : content.min.z);
+    include(scene.bounds, origin + turn * corner);
   }
-  scene.files.push_back(std::move(*png));
+  scene.hniFiles.push_back(index);
   scene.hnis.push_back({nullptr, origin, turn});
   return kOk;
 }
@@ -95,7 +106,7 @@ int loadRenderScene(const std::string& input, const std::vector<std::string>& me
   }
   for (const std::string& path : meshPaths)
     if (int code = addMesh(scene, path); code != kOk) return code;
-  for (std::size_t i = 0; i < scene.files.size(); ++i) scene.hnis[i].image = &scene.files[i].image;
+  for (std::size_t i = 0; i < scene.hnis.size(); ++i) scene.hnis[i].image = &scene.files[scene.hniFiles[i]].image;
   return kOk;
 }
 

@@ -3,6 +3,7 @@
 // the meshes named by --mesh; and the world box of their content, which the default camera fits.
 #pragma once
 
+#include <map>
 #include <string>
 #include <vector>
 
@@ -14,10 +15,17 @@
 namespace nut::cli {
 
 struct RenderScene {
-  std::vector<PngFile> files;                  // the HNIs, in the manifest's order
-  std::vector<meshref::PlacedHni> hnis;        // pointing into files
+  std::vector<PngFile> files;                  // each HNI file once, in the order first named
+  std::vector<meshref::PlacedHni> hnis;        // the placed HNIs, in the manifest's order
+  std::vector<std::size_t> hniFiles;           // per placed HNI, its file
   std::vector<meshref::TriangleMesh> meshes;   // complementary meshes, then --mesh files
   WorldBox bounds;                             // solid content of the HNIs and the meshes' vertices
+
+  struct LoadedHni {
+    std::size_t file;
+    WorldBox contentFromOrigin;  // its solid content relative to its root's origin, unturned
+  };
+  std::map<std::string, LoadedHni> loaded;     // by absolute path
 
   std::vector<const meshref::TriangleMesh*> meshPointers() const;
 };

@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <numbers>
+#include <vector>
 
 #include <glm/geometric.hpp>
 
@@ -147,6 +148,43 @@ TEST(SceneRender, ATurnedHniMatchesItsExportedMeshTurnedTheSameWay) {
   RayCastOptions options;
   options.lookup = Lookup::Exact;
   EXPECT_GE(withinPct(scene->render(camera, options).colour, reference->render(camera).colour, "turned"), kMinWithinPct);
+}
+
+// A block of 4 x 4 copies of one HNI, some turned: instances of one image and turn share a caster
+// (each moved to its place), the ground grid decides which a ray is cast into, and copies hide
+// each other. Against Embree on the exported mesh placed 16 times, from above the block and from a
+// street inside it.
+TEST(SceneRender, CopiesOfOneHniPlacedAndTurnedMatchEmbreeOnTheirPlacedMeshes) {
+  const Sample building = loadSample("building");
+  const glm::dvec3 origin = building.png.text.originM;
+  std::vector<PlacedHni> placed;
+  std::vector<TriangleMesh> copies;
+  for (int i = 0; i < 4; ++i)
+    for (int j = 0; j < 4; ++j) {
+      const glm::dvec3 at = origin + glm::dvec3(32.0 * i, 0.0, 32.0 * j);
+      const glm::dmat3 turn = yawRotation((i + j) % 3 == 0 ? 0.0 : (i + j) % 3 == 1 ? 90.0 : 30.0);
+      placed.push_back({&building.png.image, at, turn});
+      TriangleMesh copy = building.mesh;
+      for (glm::dvec3& p : copy.positions) p = at + turn * (p - origin);
+      copy.bounds = {copy.positions.front(), copy.positions.front()};
+      for (const glm::dvec3& p : copy.positions) copy.bounds.min = glm::min(copy.bounds.min, p), copy.bounds.max = glm::max(copy.bounds.max, p);
+      copies.push_back(std::move(copy));
+    }
+  std::vector<const TriangleMesh*> pointers;
+  for (const TriangleMesh& m : copies) pointers.push_back(&m);
+  const TriangleMesh all = mergeMeshes(pointers);
+  auto scene = SceneRenderer::create(placed, {});
+  ASSERT_TRUE(scene.ok());
+  auto reference = EmbreeRenderer::create(all);
+  ASSERT_TRUE(reference.ok());
+  Camera above = fitCamera(all.bounds, kWidth, kHeight);
+  Camera street = above;
+  street.eye = origin + glm::dvec3(58.0, 6.0, 110.0);
+  street.target = origin + glm::dvec3(40.0, 4.0, 20.0);
+  RayCastOptions options;
+  options.lookup = Lookup::Exact;
+  EXPECT_GE(withinPct(scene->render(above, options).colour, reference->render(above).colour, "copies-above"), kMinWithinPct);
+  EXPECT_GE(withinPct(scene->render(street, options).colour, reference->render(street).colour, "copies-street"), kMinWithinPct);
 }
 
 TEST(SceneRender, ACappedRayShowsUnlessSomethingIsInFrontOfItsHni) {

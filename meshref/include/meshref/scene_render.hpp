@@ -47,14 +47,21 @@ TriangleMesh mergeMeshes(const std::vector<const TriangleMesh*>& meshes);
 
 class SceneRenderer {
  public:
-  // Prepares a caster per HNI and one Embree scene of all the meshes. Errors: Embree cannot start
-  // or build.
+  // Prepares a caster per HNI image and turn (instances of one image with one turn share it: a
+  // street of identical houses decodes its house once), a grid over the ground of the HNIs' boxes,
+  // and one Embree scene of all the meshes. Errors: Embree cannot start or build.
   static Result<SceneRenderer> create(const std::vector<PlacedHni>& hnis, const std::vector<const TriangleMesh*>& meshes);
+
+  SceneRenderer(SceneRenderer&&) noexcept;
+  SceneRenderer& operator=(SceneRenderer&&) noexcept;
+  ~SceneRenderer();
 
   // One ray: the nearest opaque hit of any HNI or mesh (its distance, normal and colour), the cell
   // visits of every HNI the ray was cast into, and capped when one of them capped it. A ray an HNI
   // capped is drawn in kCappedColour unless something opaque lies in front of that HNI's box.
-  // HNIs whose box the ray misses, or meets behind a nearer hit, are skipped. Thread-safe.
+  // The ray walks the ground grid front to back and is cast only into HNIs whose box it meets
+  // before the nearest hit so far, so that a frame costs what its pixels see, not pixels times
+  // buildings. Thread-safe.
   RayResult trace(const glm::dvec3& originM, const glm::dvec3& direction, double pixelAngle,
                   const RayCastOptions& options) const;
 
@@ -63,9 +70,13 @@ class SceneRenderer {
                       RenderStats* stats = nullptr) const;
 
  private:
-  SceneRenderer() = default;
-  std::vector<std::unique_ptr<HniRayCaster>> casters_;  // stable addresses: a caster holds its image
-  std::vector<WorldBox> boxes_;                         // each caster's world box
+  struct Instance;
+  class GroundGrid;
+
+  SceneRenderer();
+  std::vector<std::unique_ptr<HniRayCaster>> casters_;  // stable addresses: instances point at them
+  std::vector<Instance> instances_;
+  std::unique_ptr<GroundGrid> grid_;
   std::optional<EmbreeRenderer> meshes_;
 };
 

@@ -58,6 +58,7 @@ class HniRayCaster {
 
   // World bounding box of the root block (of its turned corners).
   WorldBox bounds() const;
+  const glm::dvec3& originM() const { return originM_; }
 
   // One ray: world origin and unit direction; pixelAngle is the angle one pixel subtends (radians),
   // used only for level of detail.
