@@ -56,9 +56,12 @@ int run(RenderOptions o) {
       return kUnreadable;
     }
     std::fprintf(stderr, "render: GL %s: %s\n", o.gl.context.c_str(), (*gl)->context().description().c_str());
+    // One shared image per file: the buildings that name it are instances of one atlas entry.
+    std::vector<std::shared_ptr<const Image>> images;
+    for (const PngFile& file : scene.files) images.push_back(std::make_shared<const Image>(file.image));
     Status added = Ok{};
-    for (const meshref::PlacedHni& hni : scene.hnis)
-      if (added) added = (*gl)->addHni(*hni.image, hni.originM, hni.worldFromRoot);
+    for (std::size_t i = 0; i < scene.hnis.size(); ++i)
+      if (added) added = (*gl)->addHni(images[scene.hniFiles[i]], scene.hnis[i].originM, scene.hnis[i].worldFromRoot);
     for (const meshref::TriangleMesh& mesh : scene.meshes)
       if (added) added = (*gl)->addMesh(toMeshData(mesh));
     if (!added) {

@@ -200,7 +200,7 @@ TEST(ShaderLookups, MatchAxisViewOnTheSampleBuilding) {
   const Image& image = png->image;
   auto atlas = viewer::HniAtlas::create(probe->context().gl(), image.width, image.height);
   ASSERT_TRUE(atlas.ok());
-  ASSERT_TRUE(atlas->add(image).ok());
+  ASSERT_TRUE(atlas->put(image, {0, 0}).ok());
 
   // Per query: header (u, v), axis, coordinate. Coordinates: every boundary (heuristic and exact
   // position, and the floats beside them), random ones, and some outside the block.

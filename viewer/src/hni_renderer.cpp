@@ -42,17 +42,15 @@ Result<HniAtlas> HniAtlas::create(const Gl& gl, int width, int height) {
   return atlas;
 }
 
-Result<glm::ivec2> HniAtlas::add(const Image& hni) {
-  const auto place = bin_.insert({0, hni.width, hni.height}, packer::Heuristic::BestAreaFit);
-  if (!place)
-    return Error{"HNI atlas " + std::to_string(width_) + "x" + std::to_string(height_) + ": no room for a " +
-                 std::to_string(hni.width) + "x" + std::to_string(hni.height) + " HNI"};
+Status HniAtlas::put(const Image& hni, glm::ivec2 at) {
+  if (at.x < 0 || at.y < 0 || at.x + hni.width > width_ || at.y + hni.height > height_)
+    return Error{"HNI atlas " + std::to_string(width_) + "x" + std::to_string(height_) + ": a " + std::to_string(hni.width) + "x" +
+                 std::to_string(hni.height) + " HNI at (" + std::to_string(at.x) + ", " + std::to_string(at.y) + ") does not fit"};
   gl_->BindTexture(GL_TEXTURE_2D, texture_.get());
   gl_->PixelStorei(GL_UNPACK_ALIGNMENT, 1);
-  gl_->TexSubImage2D(GL_TEXTURE_2D, 0, place->x, place->y, hni.width, hni.height, GL_RGBA_INTEGER, GL_UNSIGNED_BYTE,
-                     hni.pixels.data());
+  gl_->TexSubImage2D(GL_TEXTURE_2D, 0, at.x, at.y, hni.width, hni.height, GL_RGBA_INTEGER, GL_UNSIGNED_BYTE, hni.pixels.data());
   gl_->BindTexture(GL_TEXTURE_2D, 0);
-  return glm::ivec2(place->x, place->y);
+  return Ok{};
 }
 
 Result<HniRenderer> HniRenderer::create(const Context& context, const ShaderLibrary& library, int glslVersion) {

@@ -1,6 +1,8 @@
 // A context, the programs, an atlas and a render target: scenes to images in one call.
 #include <viewer/offscreen.hpp>
 
+#include <unordered_map>
+
 #include <packer/maxrects.hpp>
 
 #include <nut/hni.hpp>
@@ -36,12 +38,19 @@ OffscreenRenderer::~OffscreenRenderer() {
   hniRenderer_.reset();
 }
 
-Status OffscreenRenderer::addHni(const Image& hni, const glm::dvec3& originM, const glm::dmat3& worldFromRoot) {
+Status OffscreenRenderer::addHni(std::shared_ptr<const Image> hni, const glm::dvec3& originM, const glm::dmat3& worldFromRoot) {
   // The shader follows the file's addresses without checks: only a valid HNI may reach it.
-  if (Status s = validate(hni); !s) return Error{"invalid HNI: " + s.error().message};
-  hnis_.push_back({hni, originM, worldFromRoot});
+  if (!validated_.contains(hni.get())) {
+    if (Status s = validate(*hni); !s) return Error{"invalid HNI: " + s.error().message};
+    validated_.insert(hni.get());
+  }
+  hnis_.push_back({std::move(hni), originM, worldFromRoot});
   atlas_.reset();  // packed again, with every HNI, at the next draw
   return Ok{};
+}
+
+Status OffscreenRenderer::addHni(const Image& hni, const glm::dvec3& originM, const glm::dmat3& worldFromRoot) {
+  return addHni(std::make_shared<const Image>(hni), originM, worldFromRoot);
 }
 
 Status OffscreenRenderer::addMesh(const MeshData& mesh) {
@@ -52,24 +61,32 @@ Status OffscreenRenderer::addMesh(const MeshData& mesh) {
   return Ok{};
 }
 
-// One atlas just large enough for every HNI: the packer's width search, as HNI compilation does.
+// One atlas just large enough for every distinct HNI image: the packer's width search, as HNI
+// compilation does.
 Status OffscreenRenderer::prepareAtlas() {
   if (atlas_ || hnis_.empty()) return Ok{};
+  std::vector<const Image*> distinct;
+  std::unordered_map<const Image*, std::size_t> slot;  // image -> index into distinct
   std::vector<packer::Item> items;
-  for (std::size_t i = 0; i < hnis_.size(); ++i)
-    items.push_back({static_cast<int>(i), hnis_[i].image.width, hnis_[i].image.height});
+  for (const PendingHni& h : hnis_)
+    if (slot.emplace(h.image.get(), distinct.size()).second) {
+      items.push_back({static_cast<int>(distinct.size()), h.image->width, h.image->height});
+      distinct.push_back(h.image.get());
+    }
   GLint maxSize = 0;
   context_->gl().GetIntegerv(GL_MAX_TEXTURE_SIZE, &maxSize);
   const auto layout = packer::packSearchWidth(items, maxSize, maxSize);
   if (!layout) return Error{"HNI atlas: the HNIs do not fit one " + std::to_string(maxSize) + "^2 texture"};
   auto atlas = HniAtlas::create(context_->gl(), layout->width, layout->height);
   if (!atlas) return atlas.error();
-  instances_.clear();
-  for (const PendingHni& h : hnis_) {
-    auto origin = atlas->add(h.image);
-    if (!origin) return origin.error();
-    instances_.push_back({*origin, h.originM, h.worldFromRoot});
+  std::vector<glm::ivec2> origins(distinct.size());  // per distinct image, where the atlas holds it
+  for (const packer::Placement& p : layout->placements) {
+    const auto d = static_cast<std::size_t>(p.id);
+    origins[d] = {p.rect.x, p.rect.y};
+    if (Status s = atlas->put(*distinct[d], origins[d]); !s) return s;
   }
+  instances_.clear();
+  for (const PendingHni& h : hnis_) instances_.push_back({origins[slot.at(h.image.get())], h.originM, h.worldFromRoot});
   atlas_.emplace(std::move(*atlas));
   return Ok{};
 }

@@ -27,25 +27,25 @@
 namespace nut::viewer {
 
 // A GL_RGBA8UI texture read with texelFetch (integer texels, no filtering). Every address inside
-// an HNI is relative to its origin, so HNIs are packed anywhere (MaxRects, best-area-fit).
+// an HNI is relative to its origin, so HNIs are packed anywhere (MaxRects: OffscreenRenderer lays
+// them out with the packer's width search).
 class HniAtlas {
  public:
   // An empty atlas; errors when the size exceeds GL_MAX_TEXTURE_SIZE.
   static Result<HniAtlas> create(const Gl& gl, int width, int height);
 
-  // Uploads an HNI (validate() it first) and returns its origin in the atlas; fails when there is
-  // no room left.
-  Result<glm::ivec2> add(const Image& hni);
+  // Uploads an HNI (validate() it first) with its origin at `at`, a place the caller's layout gave
+  // it (packer::packSearchWidth); fails when it does not lie inside the atlas.
+  Status put(const Image& hni, glm::ivec2 at);
 
   GLuint texture() const { return texture_.get(); }
   int width() const { return width_; }
   int height() const { return height_; }
 
  private:
-  HniAtlas(const Gl& gl, int width, int height) : gl_(&gl), width_(width), height_(height), bin_(width, height) {}
+  HniAtlas(const Gl& gl, int width, int height) : gl_(&gl), width_(width), height_(height) {}
   const Gl* gl_;
   int width_, height_;
-  packer::MaxRectsBin bin_;
   GlObject texture_;
 };
 
@@ -53,7 +53,7 @@ class HniAtlas {
 struct HniInstance {
   glm::ivec2 atlasOrigin{0};
   glm::dvec3 originM{0.0};         // world position of the root block's minimum corner
-  glm::dmat3 worldFromRoot{1.0};   // rotation of the root block's axes (the CPU caster's: identity)
+  glm::dmat3 worldFromRoot{1.0};   // rotation of the root block's axes (as for nut::HniRayCaster)
 };
 
 class HniRenderer {

@@ -11,6 +11,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <unordered_set>
 #include <vector>
 
 #include <glm/mat3x3.hpp>
@@ -47,8 +48,11 @@ class OffscreenRenderer {
   ~OffscreenRenderer();
 
   // Adds an HNI with its root block's minimum corner at originM and its axes turned by
-  // worldFromRoot (a rotation, as for nut::HniRayCaster); fails when validate()
-  // rejects the image.
+  // worldFromRoot (a rotation, as for nut::HniRayCaster); fails when validate() rejects the image.
+  // Instances given the same shared image are validated once and take one place in the atlas (a
+  // city of identical houses packs one house).
+  Status addHni(std::shared_ptr<const Image> hni, const glm::dvec3& originM, const glm::dmat3& worldFromRoot = glm::dmat3(1.0));
+  // The same with a copy of the image: an instance of its own.
   Status addHni(const Image& hni, const glm::dvec3& originM, const glm::dmat3& worldFromRoot = glm::dmat3(1.0));
   // Adds a mesh (world metres).
   Status addMesh(const MeshData& mesh);
@@ -82,11 +86,12 @@ class OffscreenRenderer {
   std::optional<RenderTarget> antiAliased_;  // FXAA's output, the size of target_
   std::optional<HniAtlas> atlas_;
   struct PendingHni {
-    Image image;
+    std::shared_ptr<const Image> image;
     glm::dvec3 originM;
     glm::dmat3 worldFromRoot;
   };
   std::vector<PendingHni> hnis_;
+  std::unordered_set<const Image*> validated_;
   std::vector<HniInstance> instances_;
   std::vector<GpuMesh> meshes_;
 };
