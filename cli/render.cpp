@@ -128,7 +128,7 @@ int run(RenderOptions o) {
 
 void addRenderCommand(CLI::App& app, int& exitCode) {
   auto o = std::make_shared<RenderOptions>();
-  CLI::App* cmd = app.add_subcommand("render", "Ray-cast an HNI into an image");
+  CLI::App* cmd = app.add_subcommand("render", "Ray-cast an HNI, or every building of a city manifest, into an image");
   cmd->add_option("input", o->input, "HNI image (PNG), or a city manifest (city.json: every building with its complementary mesh)")->required();
   cmd->add_option("-o,--output", o->output, "Output image (PNG)")->required();
   o->camera.addTo(*cmd);
