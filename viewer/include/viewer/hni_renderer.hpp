@@ -13,8 +13,6 @@
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
-#include <packer/maxrects.hpp>
-
 #include <nut/error.hpp>
 #include <nut/image.hpp>
 #include <nut/raycast.hpp>
