@@ -25,77 +25,116 @@ namespace {
 
 constexpr float kInfinity = std::numeric_limits<float>::infinity();
 
+// Three floats or ints indexed by a run-time axis: glm's operator[] is a switch, which the
+// traversal would pay at every step.
+using Float3 = std::array<float, 3>;
+using Int3 = std::array<int, 3>;
+
+glm::vec3 toVec(const Float3& v) { return {v[0], v[1], v[2]}; }
+Float3 toArray(const glm::vec3& v) { return {v.x, v.y, v.z}; }
+
 // Members are set by land() before use: no initialisers, so that the per-ray stack costs nothing
 // to create.
 struct Level {
   int block;
-  glm::vec3 o, d;        // the ray in this block's frame, units (mm)
-  glm::vec3 invD;        // 1 / d: the traversal multiplies instead of dividing
+  Float3 o, d;           // the ray in this block's frame, units (mm)
+  Float3 invD;           // 1 / d: the traversal multiplies instead of dividing
   glm::mat3 toWorld;     // rotation from this frame to the world
   std::uint8_t wrap;
   float tExit;           // the level ends here (box or parent cell exit)
-  glm::ivec3 cell;
-  glm::vec3 lo, hi;      // the cell's boundaries along each axis, within the tile
-  glm::ivec3 kLo, kHi;   // metadata pixels holding them (-1 / M for the block faces)
-  glm::vec3 tile;        // start of the current tile (multiple of D) on wrapped axes
-  glm::vec3 tNext;       // ray parameter where the ray leaves the cell, per axis
+  Int3 cell;
+  Float3 lo, hi;         // the cell's boundaries along each axis, within the tile
+  Int3 kLo, kHi;         // metadata pixels holding them (-1 / M for the block faces)
+  Float3 tile;           // start of the current tile (multiple of D) on wrapped axes
+  Float3 tNext;          // ray parameter where the ray leaves the cell, per axis
   // The face through which the ray entered the visible part of the current cell: a boundary
   // perpendicular to entryAxis of this block (a step or the block's box), or, when entryAxis is
-  // -1, entryNormal (world), inherited at landing from a clipping ancestor cell's face. Kept as an
-  // axis so that a step costs no matrix product; entryNormalWorld() builds it for the rare hit.
+  // -1, the face the level below entered through when this level landed (that level does not
+  // move while this one is on the stack), or for the root the camera's own "face". Kept as an
+  // axis so that steps and landings cost no matrix product; entryNormalWorld() builds the normal
+  // for the one hit that needs it.
   int entryAxis;
-  glm::vec3 entryNormal;
 };
 
 // The face normal, in the level's frame, of a boundary perpendicular to axis a met by the ray.
-glm::vec3 faceNormal(const glm::vec3& d, int a) {
+glm::vec3 faceNormal(const Float3& d, int a) {
   glm::vec3 n(0.0f);
-  n[a] = d[a] > 0 ? -1.0f : 1.0f;
+  n[a] = d[static_cast<std::size_t>(a)] > 0 ? -1.0f : 1.0f;
   return n;
 }
 
+// The world normal of the face through which the ray entered the current cell of stack[top].
+glm::vec3 entryNormalWorld(const Level* stack, int top, const glm::vec3& direction) {
+  for (; top >= 0; --top) {
+    const Level& L = stack[top];
+    if (L.entryAxis >= 0) return L.toWorld * faceNormal(L.d, L.entryAxis);
+  }
+  return -direction;  // a camera inside the root box sees what is in front of it
+}
+
+// Position of the interior boundary held by metadata pixel k (callers know the block's faces from
+// the cell index).
 template <Lookup mode>
 float boundaryAt(const AxisView& axis, int k) {
-  if (k < 0) return 0.0f;
-  if (k >= axis.pixels) return axis.size;
   return mode == Lookup::Exact ? axis.exactPosition(k) : axis.boundaryHeuristic(k);
 }
 
-template <Lookup mode>
-int cellAt(const AxisView& axis, float x) {
-  return mode == Lookup::Exact ? axis.cellExact(x) : axis.cellHeuristic(x);
-}
-
-inline float exitParameter(const Level& L, int a) {
+float exitParameter(const Level& L, std::size_t a) {
   if (L.d[a] > 0) return (L.tile[a] + L.hi[a] - L.o[a]) * L.invD[a];
   if (L.d[a] < 0) return (L.tile[a] + L.lo[a] - L.o[a]) * L.invD[a];
   return kInfinity;
 }
 
 void setDirection(Level& L, const glm::vec3& d) {
-  L.d = d;
-  L.invD = 1.0f / d;  // +-infinity on zero components, which exitParameter never multiplies
+  L.d = toArray(d);
+  // +-infinity on zero components, which exitParameter never multiplies
+  for (std::size_t a = 0; a < 3; ++a) L.invD[a] = 1.0f / L.d[a];
+}
+
+// The cell of axis a holding in-tile coordinate x, its boundaries, the metadata pixels holding
+// them (a pixel holding boundary m of cell c = i or i + 1 is c's upper or lower boundary; the j
+// numbers lead to the other), and the ray parameter of the exit along a.
+template <Lookup mode>
+void enterAxis(Level& L, const AxisView& axis, std::size_t a, float x) {
+  const int c = mode == Lookup::Exact ? axis.cellExact(x) : axis.cellHeuristic(x);
+  const int k = axis.pixelOf(x);
+  const std::uint8_t* p = axis.meta + 4 * k;
+  L.cell[a] = c;
+  if (c > 0) {
+    L.kLo[a] = p[1] != 0 && c == p[0] + 1 ? k : k - p[2];
+    L.lo[a] = boundaryAt<mode>(axis, L.kLo[a]);
+  } else {
+    L.kLo[a] = -1;
+    L.lo[a] = 0.0f;
+  }
+  if (c + 1 < axis.cells) {
+    L.kHi[a] = p[1] != 0 && c == p[0] ? k : k + p[3];
+    L.hi[a] = boundaryAt<mode>(axis, L.kHi[a]);
+  } else {
+    L.kHi[a] = axis.pixels;
+    L.hi[a] = axis.size;
+  }
+  L.tNext[a] = exitParameter(L, a);
 }
 
 // Redirection landing (paper Figure 14b): clips [tStart, tLimit] by the block's box (axes without
 // wrapping) and finds the landing cell. Returns the landing parameter, or a negative value when
-// the ray misses the block inside that interval. entryNormal is the world normal of the face the
-// ray crossed at tStart; the block's own box face replaces it when the box starts later.
+// the ray misses the block inside that interval. The ray enters through the face the level below
+// entered its cell by, or through the block's own box face when the box starts later.
 template <Lookup mode>
-float land(Level& L, const HniRayCaster::Block& block, float tStart, float tLimit, const glm::vec3& entryNormal) {
+float land(Level& L, const HniRayCaster::Block& block, float tStart, float tLimit) {
   float t0 = tStart, t1 = tLimit;
   L.entryAxis = -1;
-  L.entryNormal = entryNormal;
-  for (int a = 0; a < 3; ++a) {
+  for (std::size_t a = 0; a < 3; ++a) {
     if (L.wrap & (1 << a)) continue;
-    const float size = block.axes[static_cast<std::size_t>(a)].size;
+    const float size = block.axes[a].size;
     if (L.d[a] == 0) {
       if (L.o[a] < 0 || L.o[a] > size) return -1.0f;
       continue;
     }
     float ta = -L.o[a] * L.invD[a], tb = (size - L.o[a]) * L.invD[a];
     if (ta > tb) std::swap(ta, tb);
-    if (ta > t0) t0 = ta, L.entryAxis = a;
+    if (ta > t0) t0 = ta, L.entryAxis = static_cast<int>(a);
     t1 = std::min(t1, tb);
   }
   if (!(t0 < t1)) return -1.0f;
@@ -104,69 +143,74 @@ float land(Level& L, const HniRayCaster::Block& block, float tStart, float tLimi
   // interval): the transform into this frame carries that much rounding, and a cell the ray would
   // cross for less than it is an artefact of rounding (the parent's clip face and a boundary of
   // this block that coincide), not geometry. The ray is still processed from t0.
-  const float scale = std::abs(t0) + std::max({std::abs(L.o.x), std::abs(L.o.y), std::abs(L.o.z)});
+  const float scale = std::abs(t0) + std::max({std::abs(L.o[0]), std::abs(L.o[1]), std::abs(L.o[2])});
   const float tProbe = t0 + std::min(4.0f * std::numeric_limits<float>::epsilon() * scale, 0.5f * (t1 - t0));
-  for (int a = 0; a < 3; ++a) {
-    const AxisView& axis = block.axes[static_cast<std::size_t>(a)];
+  for (std::size_t a = 0; a < 3; ++a) {
+    const AxisView& axis = block.axes[a];
     float x = L.o[a] + tProbe * L.d[a];
     L.tile[a] = (L.wrap & (1 << a)) ? std::floor(x / axis.size) * axis.size : 0.0f;
     x -= L.tile[a];
-    const int c = cellAt<mode>(axis, x);
-    const int k = axis.pixelOf(x);
-    L.cell[a] = c;
-    L.kLo[a] = c > 0 ? axis.boundaryPixelAhead(k, c, -1) : -1;
-    L.kHi[a] = c + 1 < axis.cells ? axis.boundaryPixelAhead(k, c, +1) : axis.pixels;
-    L.lo[a] = boundaryAt<mode>(axis, L.kLo[a]);
-    L.hi[a] = boundaryAt<mode>(axis, L.kHi[a]);
-    L.tNext[a] = exitParameter(L, a);
+    enterAxis<mode>(L, axis, a, x);
   }
   return t0;
 }
 
-// Steps into the neighbouring cell along axis a (one metadata fetch). Returns false when the ray
-// leaves a block along an axis without wrapping.
+// Steps into the neighbouring cell along axis a (one metadata fetch: the boundary left behind is
+// the new cell's other one). Returns false when the ray leaves a block along an axis without
+// wrapping.
 template <Lookup mode>
-bool step(Level& L, const HniRayCaster::Block& block, int a) {
-  const AxisView& axis = block.axes[static_cast<std::size_t>(a)];
-  L.entryAxis = a;
+bool step(Level& L, const HniRayCaster::Block& block, std::size_t a) {
+  const AxisView& axis = block.axes[a];
+  L.entryAxis = static_cast<int>(a);
+  int& cell = L.cell[a];
   if (L.d[a] > 0) {
-    if (++L.cell[a] == axis.cells) {
+    if (++cell == axis.cells) {
       if (!(L.wrap & (1 << a))) return false;
-      L.cell[a] = 0;
+      cell = 0;
       L.tile[a] += axis.size;
-      L.kHi[a] = -1;  // the new cell starts at the block face
+      L.kLo[a] = -1;  // the new cell starts at the block face
+      L.lo[a] = 0.0f;
+    } else {
+      L.kLo[a] = L.kHi[a];
+      L.lo[a] = L.hi[a];
     }
-    L.kLo[a] = L.kHi[a];
-    L.kHi[a] = L.cell[a] + 1 == axis.cells ? axis.pixels
-               : L.kLo[a] < 0             ? axis.boundaryPixelAhead(0, 0, +1)
-                                          : axis.nextBoundaryPixel(L.kLo[a], +1);
+    if (cell + 1 == axis.cells) {
+      L.kHi[a] = axis.pixels;
+      L.hi[a] = axis.size;
+    } else {
+      L.kHi[a] = L.kLo[a] < 0 ? axis.boundaryPixelAhead(0, 0, +1) : axis.nextBoundaryPixel(L.kLo[a], +1);
+      L.hi[a] = boundaryAt<mode>(axis, L.kHi[a]);
+    }
+    L.tNext[a] = (L.tile[a] + L.hi[a] - L.o[a]) * L.invD[a];
   } else {
-    if (--L.cell[a] < 0) {
+    if (--cell < 0) {
       if (!(L.wrap & (1 << a))) return false;
-      L.cell[a] = axis.cells - 1;
+      cell = axis.cells - 1;
       L.tile[a] -= axis.size;
-      L.kLo[a] = axis.pixels;
+      L.kHi[a] = axis.pixels;  // the new cell ends at the block face
+      L.hi[a] = axis.size;
+    } else {
+      L.kHi[a] = L.kLo[a];
+      L.hi[a] = L.lo[a];
     }
-    L.kHi[a] = L.kLo[a];
-    L.kLo[a] = L.cell[a] == 0                ? -1
-               : L.kHi[a] >= axis.pixels     ? axis.boundaryPixelAhead(axis.pixels - 1, axis.cells - 1, -1)
-                                             : axis.nextBoundaryPixel(L.kHi[a], -1);
+    if (cell == 0) {
+      L.kLo[a] = -1;
+      L.lo[a] = 0.0f;
+    } else {
+      L.kLo[a] = L.kHi[a] >= axis.pixels ? axis.boundaryPixelAhead(axis.pixels - 1, axis.cells - 1, -1)
+                                         : axis.nextBoundaryPixel(L.kHi[a], -1);
+      L.lo[a] = boundaryAt<mode>(axis, L.kLo[a]);
+    }
+    L.tNext[a] = (L.tile[a] + L.lo[a] - L.o[a]) * L.invD[a];
   }
-  L.lo[a] = boundaryAt<mode>(axis, L.kLo[a]);
-  L.hi[a] = boundaryAt<mode>(axis, L.kHi[a]);
-  L.tNext[a] = exitParameter(L, a);
   return true;
 }
 
-glm::vec3 entryNormalWorld(const Level& L) {
-  return L.entryAxis >= 0 ? L.toWorld * faceNormal(L.d, L.entryAxis) : L.entryNormal;
-}
-
-int argMin(const glm::vec3& v) { return v.x <= v.y ? (v.x <= v.z ? 0 : 2) : (v.y <= v.z ? 1 : 2); }
+std::size_t argMin(const Float3& v) { return v[0] <= v[1] ? (v[0] <= v[2] ? 0 : 2) : (v[1] <= v[2] ? 1 : 2); }
 }  // namespace
 
 HniRayCaster::HniRayCaster(const Image& image, const glm::dvec3& originM, const glm::dmat3& worldFromRoot)
-    : image_(image), view_(image), originM_(originM), rootFromWorld_(glm::transpose(worldFromRoot)), blockByHeader_(256 * 256, -1) {
+    : image_(image), view_(image), originM_(originM), rootFromWorld_(glm::transpose(worldFromRoot)), worldFromRoot_(worldFromRoot), blockByHeader_(256 * 256, -1) {
   file_ = view_.fileRecord();
   for (int b = 0; b < file_.blockCount; ++b) {
     const TexelAddress at = view_.blockAddress(file_, b);
@@ -179,6 +223,7 @@ HniRayCaster::HniRayCaster(const Image& image, const glm::dvec3& originM, const 
     blocks_.push_back(block);
   }
   root_ = blockAt(file_.root);
+  for (int m = 0; m < file_.materialCount; ++m) materials_.push_back(view_.material(file_, m));
   // Every redirection record a cell uses, decoded once.
   redirectByRecord_.assign(256 * 256, -1);
   for (const Block& block : blocks_) {
@@ -229,16 +274,15 @@ RayResult HniRayCaster::traceWith(const glm::dvec3& originM, const glm::dvec3& d
   int top = 0;
   Level& root = stack[0];
   root.block = root_;
-  root.toWorld = glm::mat3(glm::transpose(rootFromWorld_));
+  root.toWorld = worldFromRoot_;
   root.wrap = 0;
   // The subtraction happens in double: world coordinates may be near 10^6 m (city origins).
-  root.o = glm::vec3(rootFromWorld_ * (originM - originM_) / format::kMetresPerUnit);
+  root.o = toArray(glm::vec3(rootFromWorld_ * (originM - originM_) / format::kMetresPerUnit));
   setDirection(root, glm::vec3(rootFromWorld_ * direction));
-  // A camera inside the root box sees what is in front of it: the entry "face" faces the ray.
-  float t = land<mode>(root, blocks_[static_cast<std::size_t>(root_)], 0.0f, kInfinity, -glm::vec3(direction));
+  const glm::vec3 directionF(direction);
+  float t = land<mode>(root, blocks_[static_cast<std::size_t>(root_)], 0.0f, kInfinity);
   if (t < 0) return result;  // misses the root box: background
   const float angle = static_cast<float>(pixelAngle);  // a cell of size s spans s / (t * angle) pixels
-  bool advance = false;
   const auto finish = [&](float tHit, const glm::vec3& normalWorld, const std::array<std::uint8_t, 3>& colour) {
     result.hit = true;
     result.distanceM = tHit * format::kMetresPerUnit;
@@ -248,110 +292,121 @@ RayResult HniRayCaster::traceWith(const glm::dvec3& originM, const glm::dvec3& d
   };
 
   while (true) {
-    Level& L = stack[static_cast<std::size_t>(top)];
-    const Block& block = blocks_[static_cast<std::size_t>(L.block)];
-    if (advance) {
-      // Leave the current cell through the nearest boundary, or leave the level.
-      const int a = argMin(L.tNext);
+    // Visit the current cell of the top level from t: hit it, land in it, or pass through it.
+    {
+      Level& L = stack[static_cast<std::size_t>(top)];
+      const Block& block = blocks_[static_cast<std::size_t>(L.block)];
+      if (++result.iterations > options.maxIterations) {
+        result.capped = true;
+        result.colour = kCappedColour;
+        return result;
+      }
+      const float tCellExit = std::min(L.tNext[argMin(L.tNext)], L.tExit);
+      // Not entered when only touched (landing on a boundary moving away).
+      const std::uint8_t* texel = tCellExit > t ? block.cellTexel({L.cell[0], L.cell[1], L.cell[2]}) : nullptr;
+      const int g = texel ? texel[3] : format::kCellEmpty;
+      if (g >= format::kCellFirstSolid) {
+        // A box is hit where the ray enters the cell's visible part (intersectSolid's answer too).
+        float tHit = t;
+        glm::vec3 surfaceNormal(0.0f);  // unit-cube normal of a hit inside the cell, else 0
+        bool inside = true;
+        if (g != format::kCellFirstSolid) {
+          const glm::vec3 lo = toVec(L.lo), size = toVec(L.hi) - lo;
+          const Solid solid{static_cast<std::uint8_t>(g - format::kCellFirstSolid)};
+          const auto hit = intersectSolid<float>(solid, (toVec(L.o) - toVec(L.tile) - lo) / size, toVec(L.d) / size, t, tCellExit);
+          inside = hit.has_value();
+          if (hit) {
+            tHit = hit->t;
+            if (tHit != t) surfaceNormal = glm::normalize(hit->normal / size);
+          }
+        }
+        if (inside) {
+          const Material& m = materials_[static_cast<std::size_t>(texel[0] | texel[1] << 8)];
+          // A hit where the ray enters the cell's visible part is on that face, which may be a
+          // cell boundary, a box face or the face of an ancestor cell that clips this block. A
+          // camera on or inside a solid sees it at distance 0, facing itself (as intersectSolid's
+          // origin-inside rule).
+          const glm::vec3 normalWorld = tHit <= 0     ? -directionF
+                                        : tHit == t ? entryNormalWorld(stack.data(), top, directionF)
+                                                    : glm::normalize(L.toWorld * surfaceNormal);
+          const auto colour = shade({m.r, m.g, m.b}, glm::dvec3(normalWorld), direction);
+          if (m.opacity == 255) {
+            finish(tHit, normalWorld, colour);
+            return result;
+          }
+          composite.add(colour, m.opacity / 255.0);
+        }
+      } else if (g == format::kCellRedirection) {
+        const Redirect& record =
+            redirects_[static_cast<std::size_t>(redirectByRecord_[static_cast<std::size_t>(texel[1] * 256 + texel[0])])];
+        const auto belowLod = [&] {
+          const float cellSize = std::max({L.hi[0] - L.lo[0], L.hi[1] - L.lo[1], L.hi[2] - L.lo[2]});
+          return cellSize < static_cast<float>(options.lodPx) * std::max(t, 1.0f) * angle;
+        };
+        if (top + 1 == kMaxStackDepth || (options.lodPx > 0 && belowLod())) {
+          // Level of detail: the target's visual summary of the face the ray entered through.
+          const glm::vec3 normalWorld = entryNormalWorld(stack.data(), top, directionF);
+          const glm::vec3 inTarget = glm::transpose(L.toWorld * record.rotation) * normalWorld;
+          const int axis = static_cast<int>(argMin(toArray(-glm::abs(inTarget))));
+          const int side = 2 * axis + (inTarget[axis] > 0 ? 0 : 1);
+          const Rgba8 s = blocks_[static_cast<std::size_t>(record.target)].header.summary[static_cast<std::size_t>(side)];
+          const auto colour = shade({s.r, s.g, s.b}, glm::dvec3(normalWorld), direction);
+          if (s.a == 255) {
+            finish(t, normalWorld, colour);
+            return result;
+          }
+          composite.add(colour, s.a / 255.0);
+        } else {
+          Level& child = stack[static_cast<std::size_t>(top + 1)];
+          child.block = record.target;
+          const glm::vec3 inCell = toVec(L.o) - toVec(L.tile) - toVec(L.lo) - record.offset;
+          if (record.unrotated) {
+            child.o = toArray(inCell);
+            child.d = L.d;
+            child.invD = L.invD;
+            child.toWorld = L.toWorld;
+          } else {
+            const glm::mat3 toChild = glm::transpose(record.rotation);
+            child.o = toArray(toChild * inCell);
+            setDirection(child, toChild * toVec(L.d));
+            child.toWorld = L.toWorld * record.rotation;
+          }
+          child.wrap = record.wrap;
+          const float landed = land<mode>(child, blocks_[static_cast<std::size_t>(record.target)], t, tCellExit);
+          if (landed >= 0) {  // else the sub-block does not reach into this part of the cell
+            t = landed;
+            ++top;
+            continue;
+          }
+        }
+      }
+    }
+    // Leave the current cell through its nearest boundary; a level left ends, and its parent
+    // leaves the cell that held it.
+    while (true) {
+      Level& L = stack[static_cast<std::size_t>(top)];
+      const std::size_t a = argMin(L.tNext);
       const float tCross = L.tNext[a];
-      if (tCross >= L.tExit || !step<mode>(L, block, a)) {
-        if (top == 0) break;
-        t = L.tExit;
-        --top;
-        continue;  // the parent advances past the cell that held this level
+      if (tCross < L.tExit && step<mode>(L, blocks_[static_cast<std::size_t>(L.block)], a)) {
+        t = std::max(t, tCross);
+        break;
       }
-      t = std::max(t, tCross);
-      advance = false;
-      continue;
-    }
-    if (++result.iterations > options.maxIterations) {
-      result.capped = true;
-      result.colour = kCappedColour;
-      return result;
-    }
-    advance = true;
-    const float tCellExit = std::min(L.tNext[argMin(L.tNext)], L.tExit);
-    if (!(tCellExit > t)) continue;  // touched, not entered (landing on a boundary moving away)
-    const std::uint8_t* texel = block.cellTexel(L.cell);
-    const int g = texel[3];
-    if (g >= format::kCellFirstSolid) {
-      // A box is hit where the ray enters the cell's visible part (intersectSolid's answer too).
-      float tHit = t;
-      glm::vec3 surfaceNormal(0.0f);  // unit-cube normal of a hit inside the cell, else 0
-      if (g != format::kCellFirstSolid) {
-        const glm::vec3 size = L.hi - L.lo;
-        const Solid solid{static_cast<std::uint8_t>(g - format::kCellFirstSolid)};
-        const auto hit = intersectSolid<float>(solid, (L.o - L.tile - L.lo) / size, L.d / size, t, tCellExit);
-        if (!hit) continue;
-        tHit = hit->t;
-        if (tHit != t) surfaceNormal = glm::normalize(hit->normal / size);
-      }
-      const Material m = view_.material(file_, texel[0] | texel[1] << 8);
-      // A hit where the ray enters the cell's visible part is on that face, which may be a cell
-      // boundary, a box face or the face of an ancestor cell that clips this block.
-      // A camera on or inside a solid sees it at distance 0, facing itself (as intersectSolid's
-      // origin-inside rule).
-      const glm::vec3 normalWorld = tHit <= 0     ? -glm::vec3(direction)
-                                    : tHit == t ? entryNormalWorld(L)
-                                                : glm::normalize(L.toWorld * surfaceNormal);
-      const auto colour = shade({m.r, m.g, m.b}, glm::dvec3(normalWorld), direction);
-      if (m.opacity == 255) {
-        finish(tHit, normalWorld, colour);
+      if (top == 0) {
+        result.colour = composite.finish(kBackground);
         return result;
       }
-      composite.add(colour, m.opacity / 255.0);
-      continue;
+      t = L.tExit;
+      --top;
     }
-    if (g != format::kCellRedirection) continue;
-
-    const Redirect& record = redirects_[static_cast<std::size_t>(redirectByRecord_[static_cast<std::size_t>(texel[1] * 256 + texel[0])])];
-    const int target = record.target;
-    const glm::mat3& rotation = record.rotation;
-    const auto belowLod = [&] {
-      const glm::vec3 cellSize = L.hi - L.lo;
-      return std::max({cellSize.x, cellSize.y, cellSize.z}) < static_cast<float>(options.lodPx) * std::max(t, 1.0f) * angle;
-    };
-    if (top + 1 == kMaxStackDepth || (options.lodPx > 0 && belowLod())) {
-      // Level of detail: the target's visual summary of the face the ray entered through.
-      const glm::vec3 normalWorld = entryNormalWorld(L);
-      const glm::vec3 inTarget = glm::transpose(L.toWorld * rotation) * normalWorld;
-      const int axis = argMin(-glm::abs(inTarget));
-      const int side = 2 * axis + (inTarget[axis] > 0 ? 0 : 1);
-      const Rgba8 s = blocks_[static_cast<std::size_t>(target)].header.summary[static_cast<std::size_t>(side)];
-      const auto colour = shade({s.r, s.g, s.b}, glm::dvec3(normalWorld), direction);
-      if (s.a == 255) {
-        finish(t, normalWorld, colour);
-        return result;
-      }
-      composite.add(colour, s.a / 255.0);
-      continue;
-    }
-    Level& child = stack[static_cast<std::size_t>(top + 1)];
-    child.block = target;
-    if (record.unrotated) {
-      child.o = L.o - L.tile - L.lo - record.offset;
-      child.d = L.d;
-      child.invD = L.invD;
-      child.toWorld = L.toWorld;
-    } else {
-      const glm::mat3 toChild = glm::transpose(rotation);
-      child.o = toChild * (L.o - L.tile - L.lo - record.offset);
-      setDirection(child, toChild * L.d);
-      child.toWorld = L.toWorld * rotation;
-    }
-    child.wrap = record.wrap;
-    const float landed =
-        land<mode>(child, blocks_[static_cast<std::size_t>(target)], t, tCellExit, entryNormalWorld(L));
-    if (landed < 0) continue;  // the sub-block does not reach into this part of the cell
-    t = landed;
-    ++top;
-    advance = false;
   }
-  result.colour = composite.finish(kBackground);
-  return result;
 }
 
-RenderOutput renderRays(const Camera& camera, const RayFunction& trace, int threads, RenderStats* stats) {
+namespace {
+
+// The pixel loop of renderRays, over any callable: renderHni passes the caster's trace directly,
+// so that it is inlined rather than called through a std::function at every pixel.
+template <typename Trace>
+RenderOutput renderRaysWith(const Camera& camera, const Trace& trace, int threads, RenderStats* stats) {
   const auto start = std::chrono::steady_clock::now();
   RenderOutput out;
   out.colour = Image(camera.width, camera.height);
@@ -389,9 +444,15 @@ RenderOutput renderRays(const Camera& camera, const RayFunction& trace, int thre
   return out;
 }
 
+}  // namespace
+
+RenderOutput renderRays(const Camera& camera, const RayFunction& trace, int threads, RenderStats* stats) {
+  return renderRaysWith(camera, trace, threads, stats);
+}
+
 RenderOutput renderHni(const HniRayCaster& caster, const Camera& camera, const RayCastOptions& options, int threads,
                        RenderStats* stats) {
-  return renderRays(
+  return renderRaysWith(
       camera, [&](const glm::dvec3& eye, const glm::dvec3& dir, double pixelAngle) { return caster.trace(eye, dir, pixelAngle, options); },
       threads, stats);
 }

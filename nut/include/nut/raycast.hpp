@@ -95,10 +95,12 @@ class HniRayCaster {
   HniView view_;
   glm::dvec3 originM_;
   glm::dmat3 rootFromWorld_;  // the transpose of worldFromRoot: rays into the root's frame
+  glm::mat3 worldFromRoot_;   // the root level's rotation to the world, as each ray starts it
   std::vector<Block> blocks_;
   std::vector<int> blockByHeader_;  // 256 * v + u -> index into blocks_, or -1
   std::vector<Redirect> redirects_;
   std::vector<int> redirectByRecord_;  // 256 * v + u -> index into redirects_, or -1
+  std::vector<Material> materials_;     // the material table, decoded once like the headers
   int root_ = 0;
   FileRecord file_;
 };
