@@ -127,8 +127,9 @@ float land(inout Level L, BlockInfo b, float tStart, float tLimit, vec3 entryNor
   return t0;
 }
 
-// Steps into the neighbouring cell along axis a (one metadata fetch). Returns false when the ray
-// leaves the block along an axis without wrapping.
+// Steps into the neighbouring cell along axis a (one metadata fetch: the boundary crossed is the
+// new cell's other one). Returns false when the ray leaves the block along an axis without
+// wrapping.
 bool stepCell(inout Level L, BlockInfo b, int a) {
   L.entryNormal = L.toWorld * faceNormal(L.d, a);
   if (L.d[a] > 0.0) {
@@ -136,27 +137,33 @@ bool stepCell(inout Level L, BlockInfo b, int a) {
       if (!wraps(L, a)) return false;
       L.cell[a] = 0;
       L.tile[a] += b.size[a];
-      L.kHi[a] = -1;  // the new cell starts at the block face
+      L.kLo[a] = -1;  // the new cell starts at the block face
+      L.lo[a] = 0.0;
+    } else {
+      L.kLo[a] = L.kHi[a];
+      L.lo[a] = L.hi[a];
     }
-    L.kLo[a] = L.kHi[a];
     L.kHi[a] = L.cell[a] + 1 == b.cells[a] ? b.pixels[a]
                : L.kLo[a] < 0             ? boundaryPixelAhead(metaTexel(b, a, 0), 0, 0, +1)
                                           : nextBoundaryPixel(b, a, L.kLo[a], +1);
+    L.hi[a] = boundaryAt(b, a, L.kHi[a]);
   } else {
     if (--L.cell[a] < 0) {
       if (!wraps(L, a)) return false;
       L.cell[a] = b.cells[a] - 1;
       L.tile[a] -= b.size[a];
-      L.kLo[a] = b.pixels[a];
+      L.kHi[a] = b.pixels[a];  // the new cell ends at the block face
+      L.hi[a] = b.size[a];
+    } else {
+      L.kHi[a] = L.kLo[a];
+      L.hi[a] = L.lo[a];
     }
-    L.kHi[a] = L.kLo[a];
     L.kLo[a] = L.cell[a] == 0             ? -1
                : L.kHi[a] >= b.pixels[a] ? boundaryPixelAhead(metaTexel(b, a, b.pixels[a] - 1), b.pixels[a] - 1,
                                                               b.cells[a] - 1, -1)
                                          : nextBoundaryPixel(b, a, L.kHi[a], -1);
+    L.lo[a] = boundaryAt(b, a, L.kLo[a]);
   }
-  L.lo[a] = boundaryAt(b, a, L.kLo[a]);
-  L.hi[a] = boundaryAt(b, a, L.kHi[a]);
   L.tNext[a] = exitParameter(L, a);
   return true;
 }
