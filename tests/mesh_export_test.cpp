@@ -661,6 +661,32 @@ TEST(MeshExport, WritesObjWithMaterials) {
   EXPECT_FALSE(std::filesystem::exists(dir / "bad.obj"));
 }
 
+TEST(MeshExport, ContentBoundsAreTheVertexBoundsOfTheCoarseMesh) {
+  // contentBounds walks the hierarchy as the export does but keeps only the extremes of the
+  // vertices: the same box, to the bit, as the exported mesh's vertices (quadrics at one segment
+  // per quarter), whatever the wraps, rotations and clips.
+  MeshExportOptions coarse;
+  coarse.minSegmentsPerQuarter = coarse.maxSegmentsPerQuarter = 1;
+  for (std::uint64_t seed = 1; seed <= 60; ++seed) {
+    SCOPED_TRACE("seed " + std::to_string(seed));
+    const Hierarchy h = nut::testing::randomHierarchy(seed);
+    const dvec3 origin(2.5e5 * static_cast<double>(seed), -31.25, 1e6 / static_cast<double>(seed));
+    auto mesh = nut::exportMesh(h, origin, coarse);
+    ASSERT_TRUE(mesh.ok()) << mesh.error().message;
+    auto box = nut::contentBounds(h, origin);
+    ASSERT_TRUE(box.ok()) << box.error().message;
+    if (mesh->positions.empty()) {
+      EXPECT_EQ(box->min, origin);
+      EXPECT_EQ(box->max, origin + h.blocks[h.root].sizeM());
+      continue;
+    }
+    dvec3 lo = mesh->positions.front(), hi = lo;
+    for (const dvec3& p : mesh->positions) lo = glm::min(lo, p), hi = glm::max(hi, p);
+    EXPECT_EQ(box->min, lo) << str(box->min - lo);
+    EXPECT_EQ(box->max, hi) << str(box->max - hi);
+  }
+}
+
 // ---------------------------------------------------------------------------------------------
 // Random hierarchies against the model's semantics
 

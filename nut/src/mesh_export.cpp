@@ -474,7 +474,10 @@ struct Instance {
 
 class Exporter {
  public:
-  Exporter(const Hierarchy& h, const MeshExportOptions& options) : h_(h), options_(options) {
+  // boundsOnly: keep only the bounding box of the vertices the mesh would have (contentBounds), with
+  // no welding and no triangles, which were most of the time and memory of a large HNI's bounds.
+  Exporter(const Hierarchy& h, const MeshExportOptions& options, bool boundsOnly = false)
+      : h_(h), options_(options), boundsOnly_(boundsOnly) {
     for (int s = 0; s < kSolidCount; ++s)
       fullFaces_[static_cast<std::size_t>(s)] = buildUnitSolid(Solid{static_cast<std::uint8_t>(s)}, 2).fullFaces;
     findBlocksWithSolids();
@@ -486,6 +489,16 @@ class Exporter {
     if (failure_) return *failure_;
     for (dvec3& p : mesh_.positions) p += originM;
     return std::move(mesh_);
+  }
+
+  // The vertex bounds run() would give, or nothing when the mesh has no vertex. Adding the origin
+  // to the extremes gives the extremes of the vertices moved by it (rounding is monotonic).
+  Result<std::optional<WorldBox>> runBounds(const glm::dvec3& originM) {
+    const std::vector<Plane> none;
+    visitTile({h_.root, Frame{}, {}, &none, 0}, dvec3(0.0));
+    if (failure_) return *failure_;
+    if (!bounds_) return std::optional<WorldBox>{};
+    return std::optional<WorldBox>{WorldBox{bounds_->min + originM, bounds_->max + originM}};
   }
 
  private:
@@ -586,6 +599,12 @@ class Exporter {
   }
 
   std::uint32_t vertex(const dvec3& p) {
+    if (boundsOnly_) {
+      // Every vertex is id 0, so triangle() drops every triangle as collapsed.
+      const dvec3 q = p + dvec3(0.0);
+      bounds_ = bounds_ ? WorldBox{glm::min(bounds_->min, q), glm::max(bounds_->max, q)} : WorldBox{q, q};
+      return 0;
+    }
     // + 0.0 turns -0.0 into +0.0: equal points must hash alike.
     const auto [it, added] = vertexIds_.try_emplace(p + dvec3(0.0), static_cast<std::uint32_t>(mesh_.positions.size()));
     if (added) mesh_.positions.push_back(it->first);
@@ -764,6 +783,8 @@ class Exporter {
   std::vector<Content> content_;
   std::map<std::pair<std::uint8_t, int>, UnitSolid> units_;
   std::vector<double> octantErrors_{1.0};  // index n; n = 0 is never used
+  const bool boundsOnly_;
+  std::optional<WorldBox> bounds_;  // boundsOnly_: of the vertices so far
   std::unordered_map<dvec3, std::uint32_t, PointHash> vertexIds_;
   ExportedMesh mesh_;
   std::uint64_t visits_ = 0;
@@ -817,14 +838,14 @@ Result<ExportedMesh> exportMesh(const Hierarchy& h, const glm::dvec3& originM, c
 }
 
 Result<WorldBox> contentBounds(const Hierarchy& h, const glm::dvec3& originM) {
+  if (Status s = checkHierarchy(h); !s) return s.error();
   MeshExportOptions coarse;
   coarse.minSegmentsPerQuarter = coarse.maxSegmentsPerQuarter = 1;
-  auto mesh = exportMesh(h, originM, coarse);
-  if (!mesh) return mesh.error();
-  if (mesh->positions.empty()) return WorldBox{originM, originM + h.blocks[h.root].sizeM()};
-  WorldBox box{mesh->positions.front(), mesh->positions.front()};
-  for (const glm::dvec3& p : mesh->positions) box.min = glm::min(box.min, p), box.max = glm::max(box.max, p);
-  return box;
+  Exporter exporter(h, coarse, /*boundsOnly=*/true);
+  auto bounds = exporter.runBounds(originM);
+  if (!bounds) return bounds.error();
+  if (!*bounds) return WorldBox{originM, originM + h.blocks[h.root].sizeM()};
+  return **bounds;
 }
 
 Status writeObj(const std::string& objPath, const ExportedMesh& mesh, const std::vector<Material>& materials) {
