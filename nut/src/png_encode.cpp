@@ -149,6 +149,13 @@ Bytes zopfliCompress(const Bytes& data) {
   // One pass: on HNI pixel streams (long runs and repeats) it is 15 % smaller than zlib's best,
   // and 5 passes gain 1 % more in 2.5 times the time.
   options.numiterations = 1;
+  // Block splitting searches every split point of a stream of under 1,024 matches and literals,
+  // which on a short HNI stream costs 0.05-0.3 s and pays nothing: on the 42 of Zurich's 49
+  // converted buildings whose streams are under 16 KiB, one block each came out 26 B smaller in
+  // all, in 0.35 s instead of 2.4 s. Longer streams gain from it (the sample building's 32 KB,
+  // 80 B).
+  constexpr std::size_t kMinSplitBytes = 16 * 1024;
+  options.blocksplitting = data.size() >= kMinSplitBytes ? 1 : 0;
   constexpr std::size_t kMinPart = 64 * 1024;
   const std::size_t parts = std::clamp<std::size_t>(data.size() / kMinPart, 1, std::max(1u, std::thread::hardware_concurrency()));
   struct Part {
