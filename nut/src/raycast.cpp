@@ -92,23 +92,21 @@ void setDirection(Level& L, const glm::vec3& d) {
 }
 
 // The cell of axis a holding in-tile coordinate x, its boundaries, the metadata pixels holding
-// them (a pixel holding boundary m of cell c = i or i + 1 is c's upper or lower boundary; the j
-// numbers lead to the other), and the ray parameter of the exit along a.
+// them, and the ray parameter of the exit along a.
 template <Lookup mode>
 void enterAxis(Level& L, const AxisView& axis, std::size_t a, float x) {
   const int c = mode == Lookup::Exact ? axis.cellExact(x) : axis.cellHeuristic(x);
   const int k = axis.pixelOf(x);
-  const std::uint8_t* p = axis.meta + 4 * k;
   L.cell[a] = c;
   if (c > 0) {
-    L.kLo[a] = p[1] != 0 && c == p[0] + 1 ? k : k - p[2];
+    L.kLo[a] = axis.boundaryPixelAhead(k, c, -1);
     L.lo[a] = boundaryAt<mode>(axis, L.kLo[a]);
   } else {
     L.kLo[a] = -1;
     L.lo[a] = 0.0f;
   }
   if (c + 1 < axis.cells) {
-    L.kHi[a] = p[1] != 0 && c == p[0] ? k : k + p[3];
+    L.kHi[a] = axis.boundaryPixelAhead(k, c, +1);
     L.hi[a] = boundaryAt<mode>(axis, L.kHi[a]);
   } else {
     L.kHi[a] = axis.pixels;
