@@ -179,7 +179,6 @@ bool step(Level& L, const HniRayCaster::Block& block, std::size_t a) {
       L.kHi[a] = L.kLo[a] < 0 ? axis.boundaryPixelAhead(0, 0, +1) : axis.nextBoundaryPixel(L.kLo[a], +1);
       L.hi[a] = boundaryAt<mode>(axis, L.kHi[a]);
     }
-    L.tNext[a] = (L.tile[a] + L.hi[a] - L.o[a]) * L.invD[a];
   } else {
     if (--cell < 0) {
       if (!(L.wrap & (1 << a))) return false;
@@ -199,8 +198,8 @@ bool step(Level& L, const HniRayCaster::Block& block, std::size_t a) {
                                          : axis.nextBoundaryPixel(L.kHi[a], -1);
       L.lo[a] = boundaryAt<mode>(axis, L.kLo[a]);
     }
-    L.tNext[a] = (L.tile[a] + L.lo[a] - L.o[a]) * L.invD[a];
   }
+  L.tNext[a] = exitParameter(L, a);
   return true;
 }
 
