@@ -1,6 +1,8 @@
 // hni_raycast.frag — the HNI ray caster: a step-for-step port of the CPU reference caster
 // nut::HniRayCaster::traceWith (nut/src/raycast.cpp), in float like it, writing the colour of
-// docs/RENDERING.md and gl_FragDepth so that HNIs and meshes share one depth-tested image.
+// docs/RENDERING.md and gl_FragDepth so that HNIs and meshes share one depth-tested image. The
+// same cells are visited in the same order; where the CPU caster takes a step's new boundary from
+// a table it read once per block, this shader fetches the metadata pixel the j numbers lead to.
 //
 // References: Kuang et al. 2013, section 6 and Algorithm 1 (ray casting: NUT traversal with one
 // next-boundary query per step using the j numbers, Figure 14a; redirection landing: fetch the

@@ -1,8 +1,9 @@
 // The CPU reference ray caster (paper section 6, Algorithm 1): NUT traversal and redirection
 // landing over the encoded image, in float like the shader. One Level per block instance on the
 // stack; each keeps the ray in the block's frame and, per axis, the current cell, its two
-// boundaries, the metadata pixels holding them and the ray parameter of the next boundary, so
-// that a step reads one metadata pixel (paper Figure 14a).
+// boundaries and the ray parameter of the next boundary. A step (paper Figure 14a) takes its new
+// boundary from the block's boundary table, which holds what the shader's one metadata fetch per
+// step reads: the positions of the pixels the j numbers lead to.
 #include <nut/raycast.hpp>
 
 #include <algorithm>
@@ -44,7 +45,6 @@ struct Level {
   float tExit;           // the level ends here (box or parent cell exit)
   Int3 cell;
   Float3 lo, hi;         // the cell's boundaries along each axis, within the tile
-  Int3 kLo, kHi;         // metadata pixels holding them (-1 / M for the block faces)
   Float3 tile;           // start of the current tile (multiple of D) on wrapped axes
   Float3 tNext;          // ray parameter where the ray leaves the cell, per axis
   // The face through which the ray entered the visible part of the current cell: a boundary
@@ -72,11 +72,10 @@ glm::vec3 entryNormalWorld(const Level* stack, int top, const glm::vec3& directi
   return -direction;  // a camera inside the root box sees what is in front of it
 }
 
-// Position of the interior boundary held by metadata pixel k (callers know the block's faces from
-// the cell index).
+// Boundaries b_0 .. b_W of axis a as the lookup places them.
 template <Lookup mode>
-float boundaryAt(const AxisView& axis, int k) {
-  return mode == Lookup::Exact ? axis.exactPosition(k) : axis.boundaryHeuristic(k);
+const float* boundsOf(const HniRayCaster::Block& block, std::size_t a) {
+  return (mode == Lookup::Exact ? block.exactBounds : block.heuristicBounds)[a].data();
 }
 
 float exitParameter(const Level& L, std::size_t a) {
@@ -91,27 +90,16 @@ void setDirection(Level& L, const glm::vec3& d) {
   for (std::size_t a = 0; a < 3; ++a) L.invD[a] = 1.0f / L.d[a];
 }
 
-// The cell of axis a holding in-tile coordinate x, its boundaries, the metadata pixels holding
-// them, and the ray parameter of the exit along a.
+// The cell of axis a holding in-tile coordinate x, its boundaries and the ray parameter of the
+// exit along a.
 template <Lookup mode>
-void enterAxis(Level& L, const AxisView& axis, std::size_t a, float x) {
+void enterAxis(Level& L, const HniRayCaster::Block& block, std::size_t a, float x) {
+  const AxisView& axis = block.axes[a];
   const int c = mode == Lookup::Exact ? axis.cellExact(x) : axis.cellHeuristic(x);
-  const int k = axis.pixelOf(x);
+  const float* bounds = boundsOf<mode>(block, a);
   L.cell[a] = c;
-  if (c > 0) {
-    L.kLo[a] = axis.boundaryPixelAhead(k, c, -1);
-    L.lo[a] = boundaryAt<mode>(axis, L.kLo[a]);
-  } else {
-    L.kLo[a] = -1;
-    L.lo[a] = 0.0f;
-  }
-  if (c + 1 < axis.cells) {
-    L.kHi[a] = axis.boundaryPixelAhead(k, c, +1);
-    L.hi[a] = boundaryAt<mode>(axis, L.kHi[a]);
-  } else {
-    L.kHi[a] = axis.pixels;
-    L.hi[a] = axis.size;
-  }
+  L.lo[a] = bounds[c];
+  L.hi[a] = bounds[c + 1];
   L.tNext[a] = exitParameter(L, a);
 }
 
@@ -148,57 +136,30 @@ float land(Level& L, const HniRayCaster::Block& block, float tStart, float tLimi
     float x = L.o[a] + tProbe * L.d[a];
     L.tile[a] = (L.wrap & (1 << a)) ? std::floor(x / axis.size) * axis.size : 0.0f;
     x -= L.tile[a];
-    enterAxis<mode>(L, axis, a, x);
+    enterAxis<mode>(L, block, a, x);
   }
   return t0;
 }
 
-// Steps into the neighbouring cell along axis a (one metadata fetch: the boundary left behind is
-// the new cell's other one). Returns false when the ray leaves a block along an axis without
-// wrapping.
+// Steps into the neighbouring cell along axis a. Returns false when the ray leaves a block along
+// an axis without wrapping.
 template <Lookup mode>
 bool step(Level& L, const HniRayCaster::Block& block, std::size_t a) {
   const AxisView& axis = block.axes[a];
   L.entryAxis = static_cast<int>(a);
   int& cell = L.cell[a];
-  if (L.d[a] > 0) {
-    if (++cell == axis.cells) {
-      if (!(L.wrap & (1 << a))) return false;
-      cell = 0;
-      L.tile[a] += axis.size;
-      L.kLo[a] = -1;  // the new cell starts at the block face
-      L.lo[a] = 0.0f;
-    } else {
-      L.kLo[a] = L.kHi[a];
-      L.lo[a] = L.hi[a];
-    }
-    if (cell + 1 == axis.cells) {
-      L.kHi[a] = axis.pixels;
-      L.hi[a] = axis.size;
-    } else {
-      L.kHi[a] = L.kLo[a] < 0 ? axis.boundaryPixelAhead(0, 0, +1) : axis.nextBoundaryPixel(L.kLo[a], +1);
-      L.hi[a] = boundaryAt<mode>(axis, L.kHi[a]);
-    }
-  } else {
-    if (--cell < 0) {
-      if (!(L.wrap & (1 << a))) return false;
-      cell = axis.cells - 1;
-      L.tile[a] -= axis.size;
-      L.kHi[a] = axis.pixels;  // the new cell ends at the block face
-      L.hi[a] = axis.size;
-    } else {
-      L.kHi[a] = L.kLo[a];
-      L.hi[a] = L.lo[a];
-    }
-    if (cell == 0) {
-      L.kLo[a] = -1;
-      L.lo[a] = 0.0f;
-    } else {
-      L.kLo[a] = L.kHi[a] >= axis.pixels ? axis.boundaryPixelAhead(axis.pixels - 1, axis.cells - 1, -1)
-                                         : axis.nextBoundaryPixel(L.kHi[a], -1);
-      L.lo[a] = boundaryAt<mode>(axis, L.kLo[a]);
-    }
+  if (L.d[a] > 0 && ++cell == axis.cells) {
+    if (!(L.wrap & (1 << a))) return false;
+    cell = 0;
+    L.tile[a] += axis.size;
+  } else if (L.d[a] < 0 && --cell < 0) {
+    if (!(L.wrap & (1 << a))) return false;
+    cell = axis.cells - 1;
+    L.tile[a] -= axis.size;
   }
+  const float* bounds = boundsOf<mode>(block, a);
+  L.lo[a] = bounds[cell];
+  L.hi[a] = bounds[cell + 1];
   L.tNext[a] = exitParameter(L, a);
   return true;
 }
@@ -213,7 +174,17 @@ HniRayCaster::HniRayCaster(const Image& image, const glm::dvec3& originM, const 
     const TexelAddress at = view_.blockAddress(file_, b);
     Block block;
     block.header = view_.header(at);
-    for (int a = 0; a < 3; ++a) block.axes[static_cast<std::size_t>(a)] = view_.axis(block.header, a);
+    for (std::size_t a = 0; a < 3; ++a) {
+      const AxisView& axis = block.axes[a] = view_.axis(block.header, static_cast<int>(a));
+      block.heuristicBounds[a] = {0.0f};
+      block.exactBounds[a] = {0.0f};
+      for (int m = 1, k = axis.boundaryPixelAhead(0, 0, +1); m < axis.cells; ++m, k = axis.nextBoundaryPixel(k, +1)) {
+        block.heuristicBounds[a].push_back(axis.boundaryHeuristic(k));
+        block.exactBounds[a].push_back(axis.exactPosition(k));
+      }
+      block.heuristicBounds[a].push_back(axis.size);
+      block.exactBounds[a].push_back(axis.size);
+    }
     block.bottomRow = view_.cellTexel(block.header, {0, 0, 0});
     block.rowBytes = view_.rowBytes();
     blockByHeader_[static_cast<std::size_t>(at.v * 256 + at.u)] = static_cast<int>(blocks_.size());

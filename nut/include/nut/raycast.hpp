@@ -1,8 +1,9 @@
 // nut/raycast.hpp — the CPU reference ray caster over an encoded HNI (paper section 6).
 //
-// It reads the image through HniView with exactly the lookups the GLSL shader makes: NUT traversal
-// with one next-boundary query per step through the j numbers, redirection landing (record, ray
-// transform, lower header, landing cell), a fixed-size stack to return to parents, wrapping, the 69
+// It reads the image through HniView with the lookups the GLSL shader makes: NUT traversal (the
+// boundary a step reaches is the one the shader reads through the j numbers, taken from a table
+// read once per block), redirection landing (record, ray transform, lower header, landing cell by
+// random access), a fixed-size stack to return to parents, wrapping, the 69
 // solids, translucent cells that tint and continue, level of detail from visual summaries, and an
 // iteration cap. It computes in float, as the shader does; the exact path (exact_path.hpp) is the
 // double-precision ground truth it is tested against. docs/RENDERING.md defines the output.
@@ -65,10 +66,14 @@ class HniRayCaster {
   RayResult trace(const glm::dvec3& originM, const glm::dvec3& direction, double pixelAngle,
                   const RayCastOptions& options) const;
 
-  // A block header decoded once, with its axis views (the shader re-reads these at each landing).
+  // A block header decoded once, with its axis views (the shader re-reads these at each landing)
+  // and each axis's boundaries b_0 = 0 .. b_W = D in units, as the heuristic and the exact
+  // lookups place them, read once by following the j numbers from boundary to boundary as the
+  // shader's steps do: a step of this caster takes its new boundary from the table.
   struct Block {
     BlockHeader header;
     std::array<AxisView, 3> axes;
+    std::array<std::vector<float>, 3> heuristicBounds, exactBounds;
     const std::uint8_t* bottomRow;  // data pixel of cell (0, 0, 0): rows run upwards from here
     std::ptrdiff_t rowBytes;
     const std::uint8_t* cellTexel(const glm::ivec3& c) const {
