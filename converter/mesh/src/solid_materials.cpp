@@ -85,6 +85,259 @@ std::vector<CellRectangle> joinCells(const std::vector<std::array<int, 2>>& cell
   return out;
 }
 
+namespace {
+
+// What computeShares gathers from a run of faces; runs are joined in order afterwards, so that
+// the result does not depend on the thread count.
+struct ShareChunk {
+  std::vector<Builder::Share> shares, lost;
+  Mesh complement;
+  double nut = 0, complementArea = 0, hidden = 0, drawnTwice = 0;
+
+  // A convex polygon in the grid frame, added to the complementary mesh (world frame) as a fan.
+  void addToMesh(const dvec3* poly, int count, std::uint16_t material, const dvec3& origin) {
+    const auto base = static_cast<std::uint32_t>(complement.positions.size());
+    for (int i = 0; i < count; ++i) complement.positions.push_back(poly[i] + origin);
+    for (std::uint32_t i = 1; i + 1 < static_cast<std::uint32_t>(count); ++i) {
+      complement.triangles.push_back({base, base + i, base + i + 1});
+      complement.triangleMaterial.push_back(material);
+    }
+  }
+};
+
+// An axis-aligned face seen along its axis a: its triangle in the (u, v) plane, and its own
+// plane, which lifts clipped pieces back to 3D (where along a the surface really is, and the
+// complementary mesh's corners).
+struct FaceAlongAxis {
+  int a, u, v;
+  Polygon2 tri;
+  dvec3 normal;
+  double d;         // normal . x on the plane
+  double trueArea;  // per projected area
+
+  std::array<dvec3, 12> lift(const Polygon2& piece) const {
+    std::array<dvec3, 12> corners{};
+    for (int m = 0; m < piece.n; ++m) {
+      dvec3& q = corners[static_cast<std::size_t>(m)];
+      q[u] = piece.p[static_cast<std::size_t>(m)].x;
+      q[v] = piece.p[static_cast<std::size_t>(m)].y;
+      q[a] = (d - normal[u] * q[u] - normal[v] * q[v]) / normal[a];
+    }
+    return corners;
+  }
+};
+
+// A face's piece over the cells (i, j) of its plane.
+struct FacePiece {
+  int i, j;
+  Polygon2 poly;
+  double area;                    // true area
+  std::array<dvec3, 12> corners;  // on the face's plane
+  double surfaceLo, surfaceHi;    // where along the axis the piece is
+};
+
+// Calls f(piece) for each piece of the face over a cell of its plane, clipping a column strip
+// first, then its rows: two clips per cell instead of four.
+template <typename F>
+void forEachPiece(const Builder& b, const FaceAlongAxis& face, F&& f) {
+  const auto& U = b.bounds[static_cast<std::size_t>(face.u)];
+  const auto& V = b.bounds[static_cast<std::size_t>(face.v)];
+  const auto& p = face.tri.p;
+  const int i0 = cellOf(U, std::min({p[0].x, p[1].x, p[2].x})), i1 = cellOf(U, std::max({p[0].x, p[1].x, p[2].x}));
+  const int j0 = cellOf(V, std::min({p[0].y, p[1].y, p[2].y})), j1 = cellOf(V, std::max({p[0].y, p[1].y, p[2].y}));
+  for (int i = i0; i <= i1; ++i) {
+    Polygon2 strip = face.tri;
+    if (i0 != i1) {
+      clipAxis(strip, 0, U[static_cast<std::size_t>(i)], false);
+      clipAxis(strip, 0, U[static_cast<std::size_t>(i + 1)], true);
+      if (strip.n < 3) continue;
+    }
+    for (int j = j0; j <= j1; ++j) {
+      FacePiece piece{
+          i, j, strip, 0, {}, std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity()};
+      if (j0 != j1) {
+        clipAxis(piece.poly, 1, V[static_cast<std::size_t>(j)], false);
+        clipAxis(piece.poly, 1, V[static_cast<std::size_t>(j + 1)], true);
+        if (piece.poly.n < 3) continue;
+      }
+      piece.area = polygonArea(piece.poly) * face.trueArea;
+      if (piece.area <= kMinPieceAreaM2) continue;  // a clipping sliver, not a piece of surface
+      piece.corners = face.lift(piece.poly);
+      for (int m = 0; m < piece.poly.n; ++m) {
+        piece.surfaceLo = std::min(piece.surfaceLo, piece.corners[static_cast<std::size_t>(m)][face.a]);
+        piece.surfaceHi = std::max(piece.surfaceHi, piece.corners[static_cast<std::size_t>(m)][face.a]);
+      }
+      f(piece);
+    }
+  }
+}
+
+// The cells on either side of a boundary under a piece, and whether each is solid there.
+constexpr std::size_t kNoCell = std::numeric_limits<std::size_t>::max();
+struct Sides {
+  std::size_t lo, hi;  // the cells below and above the boundary (kNoCell: beyond the grid)
+  bool solidLo, solidHi;
+};
+
+// The sides of boundary k of the face's axis under the piece. A cell showing a quarter-round
+// sub-block covers the piece only where S is solid under all of it; where the arc crosses it, the
+// other side's cell shows it.
+Sides sidesAt(const Builder& b, const FaceAlongAxis& face, const FacePiece& piece, int k) {
+  const auto a = static_cast<std::size_t>(face.a);
+  std::array<int, 3> lo{}, hi{};
+  lo[static_cast<std::size_t>(face.u)] = hi[static_cast<std::size_t>(face.u)] = piece.i;
+  lo[static_cast<std::size_t>(face.v)] = hi[static_cast<std::size_t>(face.v)] = piece.j;
+  lo[a] = k - 1;
+  hi[a] = k;
+  std::array<dvec3, 12> onBoundary = piece.corners;
+  for (int m = 0; m < piece.poly.n; ++m)
+    onBoundary[static_cast<std::size_t>(m)][face.a] = b.bounds[a][static_cast<std::size_t>(k)];
+  const std::span<const dvec3> points(onBoundary.data(), static_cast<std::size_t>(piece.poly.n));
+  Sides s{kNoCell, kNoCell, false, false};
+  if (k > 0) s.lo = b.index(lo), s.solidLo = b.solidAt(s.lo, points);
+  if (k < b.n[a]) s.hi = b.index(hi), s.solidHi = b.solidAt(s.hi, points);
+  return s;
+}
+
+// The sides at boundary k, or where those are both empty or both solid, at the nearest boundary
+// within the tolerance of the piece whose sides differ. A slightly tilted face spans more than
+// one boundary of its axis, and the solid's face may be at another one (a wall 0.1 degree off
+// over 10 m; the steps of a drifting facade); without this the face would take the colour of the
+// cell's other faces (a ground plate's) with the true wall in the mesh a few millimetres away.
+Sides sidesShowing(const Builder& b, const FaceAlongAxis& face, const FacePiece& piece, int k) {
+  const auto& A = b.bounds[static_cast<std::size_t>(face.a)];
+  Sides sides = sidesAt(b, face, piece, k);
+  for (int step = 1; sides.solidLo == sides.solidHi; ++step) {
+    bool inReach = false;
+    for (int kk : {k - step, k + step}) {
+      if (kk < 0 || kk > b.n[static_cast<std::size_t>(face.a)]) continue;
+      const double at = A[static_cast<std::size_t>(kk)];
+      if (at < piece.surfaceLo - b.tol || at > piece.surfaceHi + b.tol) continue;
+      inReach = true;
+      if (const Sides near = sidesAt(b, face, piece, kk); near.solidLo != near.solidHi) return near;
+    }
+    if (!inReach) break;
+  }
+  return sides;
+}
+
+// A face given to the complementary mesh whole.
+void giveFaceToMesh(const Builder& b, std::uint32_t f, ShareChunk& out) {
+  const Face& face = b.faces[f];
+  const dvec3 tri3[3] = {b.corner(f, 0), b.corner(f, 1), b.corner(f, 2)};
+  if (face.area > 0) out.addToMesh(tri3, 3, b.mesh.triangleMaterial[f], b.origin);
+  out.complementArea += face.area;
+}
+
+// A slope's face, shown by wedges, or a quadric's curved face, shown by its cells or sub-block
+// (fitWedges and fitQuadrics gave the cells their shares). A slope face's parts over cells where
+// its plane made no wedge go to the mesh.
+void shareSlopeOrCurvedFace(const Builder& b, std::uint32_t f, ShareChunk& out) {
+  const Face& face = b.faces[f];
+  double meshArea = 0;
+  if (face.kind == FaceKind::Slope)
+    for (const Builder::MeshPiece& piece : b.meshPieces(f)) {
+      out.addToMesh(piece.p.data(), piece.n, b.mesh.triangleMaterial[f], b.origin);
+      meshArea += piece.area;
+    }
+  out.complementArea += meshArea;
+  out.nut += face.area - meshArea;
+}
+
+// An axis-aligned face, piece by piece over the cells of its plane.
+void shareAxisAlignedFace(const Builder& b, std::uint32_t f, ShareChunk& out) {
+  const Face& face = b.faces[f];
+  const std::uint16_t material = b.mesh.triangleMaterial[f];
+  const int a = face.axis, u = (a + 1) % 3, v = (a + 2) % 3;
+  const auto& A = b.bounds[static_cast<std::size_t>(a)];
+  const int clusterBoundary =
+      nearestBoundary(A, b.clusterMeans[static_cast<std::size_t>(a)][static_cast<std::size_t>(face.group)]);
+  const bool drifting = b.clusterDrifts[static_cast<std::size_t>(a)][static_cast<std::size_t>(face.group)];
+  const dvec3 P0 = b.corner(f, 0), P1 = b.corner(f, 1), P2 = b.corner(f, 2);
+  FaceAlongAxis along{a, u, v, {}, face.areaVector / face.area, 0, 0};
+  along.tri.n = 3;
+  along.tri.p[0] = {P0[u], P0[v]};
+  along.tri.p[1] = {P1[u], P1[v]};
+  along.tri.p[2] = {P2[u], P2[v]};
+  const double projected = polygonArea(along.tri);
+  if (projected <= 0) return;
+  along.trueArea = face.area / projected;
+  along.d = glm::dot(along.normal, P0);
+
+  // Cells (i, j) whose piece the mesh must show.
+  std::vector<std::array<int, 2>> uncovered;
+  double uncoveredArea = 0, shownArea = 0;
+  forEachPiece(b, along, [&](const FacePiece& piece) {
+    // A face of a drifting chain (clusterIntervals) is cut across its steps: each piece starts at
+    // the boundary nearest to where it is.
+    const int k = drifting ? nearestBoundary(A, 0.5 * (piece.surfaceLo + piece.surfaceHi)) : clusterBoundary;
+    const Sides sides = sidesShowing(b, along, piece, k);
+    if (sides.solidLo != sides.solidHi) {
+      // The face is on the +a side of the cell below it, on the -a side of the cell above. One
+      // that faces into the solid is an inner face (the bottom of a dome standing on the roof):
+      // it only counts where nothing else covers the cell.
+      const bool facesOut = (along.normal[a] > 0) == sides.solidLo;
+      out.shares.push_back({sides.solidLo ? sides.lo : sides.hi, material,
+                            static_cast<std::uint8_t>(2 * a + (sides.solidLo ? 1 : 0)),
+                            facesOut ? piece.area : kInnerFaceWeight * piece.area});
+      out.nut += piece.area;
+      shownArea += piece.area;
+    } else if (!sides.solidLo) {
+      // Empty on both sides: a thin sheet the mesh must show, or a strip thinner than the
+      // tolerance left over where boundaries merged, which is within the tolerance already.
+      double extent = 0;
+      const auto& q = piece.poly.p;
+      for (int m = 0; m < piece.poly.n; ++m)
+        extent = std::max(
+            extent, glm::length(q[static_cast<std::size_t>(m)] - q[static_cast<std::size_t>((m + 1) % piece.poly.n)]));
+      if (piece.area < 0.5 * b.tol * extent) {
+        out.nut += piece.area;
+        return;
+      }
+      uncovered.push_back({piece.i, piece.j});
+      uncoveredArea += piece.area;
+      if (sides.lo != kNoCell && b.trimmed.contains(sides.lo))
+        out.lost.push_back({sides.lo, material, static_cast<std::uint8_t>(2 * a + 1), piece.area});
+      if (sides.hi != kNoCell && b.trimmed.contains(sides.hi))
+        out.lost.push_back({sides.hi, material, static_cast<std::uint8_t>(2 * a), piece.area});
+      out.complementArea += piece.area;
+    } else {
+      out.hidden += piece.area;  // solid on both sides: an inner face nobody sees
+    }
+  });
+  if (uncovered.empty()) return;
+
+  // The uncovered cells joined into rectangles (runs along v, then equal runs of neighbouring
+  // columns), each clipped from the face once.
+  const auto& U = b.bounds[static_cast<std::size_t>(u)];
+  const auto& V = b.bounds[static_cast<std::size_t>(v)];
+  std::vector<Polygon2> pieces;
+  int pieceTriangles = 0;
+  for (const CellRectangle& r : joinCells(uncovered)) {
+    Polygon2 piece = along.tri;
+    clipAxis(piece, 0, U[static_cast<std::size_t>(r.i0)], false);
+    clipAxis(piece, 0, U[static_cast<std::size_t>(r.i1 + 1)], true);
+    clipAxis(piece, 1, V[static_cast<std::size_t>(r.j0)], false);
+    clipAxis(piece, 1, V[static_cast<std::size_t>(r.j1 + 1)], true);
+    if (piece.n < 3) continue;
+    pieces.push_back(piece);
+    pieceTriangles += piece.n - 2;
+  }
+  // The face goes to the mesh whole when that takes fewer triangles than its pieces (a staircase
+  // of cells under a roof left to the mesh cuts a gable into a dozen), or when most of it is
+  // uncovered. Its covered part is then drawn twice, by its cells and by the face itself, in the
+  // face's own material and within the tolerance of the cells' surface.
+  if (pieceTriangles > 1 || 2 * uncoveredArea > face.area) {
+    const dvec3 tri3[3] = {P0, P1, P2};
+    out.addToMesh(tri3, 3, material, b.origin);
+    out.drawnTwice += shownArea;
+    return;
+  }
+  for (const Polygon2& piece : pieces) out.addToMesh(along.lift(piece).data(), piece.n, material, b.origin);
+}
+
+}  // namespace
+
 // Clips every axis-aligned face against the cell faces it covers (step 4 of solid.hpp). Where
 // exactly one side is solid, that cell gets a share of the face's area for the face's material
 // on that side; wedges add their slope (fitWedges), quadric cells their curved face
@@ -92,219 +345,32 @@ std::vector<CellRectangle> joinCells(const std::vector<std::array<int, 2>>& cell
 // statistics are counted; those beside a trimmed cell are also listed in `lost`, as shares of
 // that cell (what keeping part of it would win back: proposeTrimSplits).
 std::vector<Builder::Share> Builder::computeShares(Mesh& complement, SolidStats& area, std::vector<Share>& lost) {
-  // Faces are handled in chunks on all threads, each chunk into its own lists, which are then
-  // joined in chunk order so that the result does not depend on the thread count.
-  struct Chunk {
-    std::vector<Share> shares, lost;
-    Mesh complement;
-    double nut = 0, complementArea = 0, hidden = 0, drawnTwice = 0;
-  };
-  constexpr std::size_t kChunk = 4096;
-  std::vector<Chunk> chunks((faces.size() + kChunk - 1) / kChunk);
+  constexpr std::size_t kChunk = 4096;  // faces per task on the threads
+  std::vector<ShareChunk> chunks((faces.size() + kChunk - 1) / kChunk);
   parallelFor(faces.size(), kChunk, options.threads, [&](std::size_t begin, std::size_t end) {
-    Chunk& out = chunks[begin / kChunk];
-    const auto addComplementPolygon = [&](const dvec3* poly, int count, std::uint16_t material) {
-      const auto base = static_cast<std::uint32_t>(out.complement.positions.size());
-      for (int i = 0; i < count; ++i) out.complement.positions.push_back(poly[i] + origin);
-      for (std::uint32_t i = 1; i + 1 < static_cast<std::uint32_t>(count); ++i) {
-        out.complement.triangles.push_back({base, base + i, base + i + 1});
-        out.complement.triangleMaterial.push_back(material);
-      }
-    };
+    ShareChunk& out = chunks[begin / kChunk];
     for (auto f = static_cast<std::uint32_t>(begin); f < end; ++f) {
-      const Face& face = faces[f];
-      const std::uint16_t material = mesh.triangleMaterial[f];
-      if (shownByMesh(f)) {
-        const dvec3 tri3[3] = {corner(f, 0), corner(f, 1), corner(f, 2)};
-        if (face.area > 0) addComplementPolygon(tri3, 3, material);
-        out.complementArea += face.area;
-        continue;
-      }
-      if (face.kind == FaceKind::Slope || face.kind == FaceKind::Quadric) {
-        // A slope face's parts over cells where its plane made no wedge go to the mesh.
-        double meshArea = 0;
-        if (face.kind == FaceKind::Slope)
-          for (const MeshPiece& piece : meshPieces(f)) {
-            addComplementPolygon(piece.p.data(), piece.n, material);
-            meshArea += piece.area;
-          }
-        out.complementArea += meshArea;
-        out.nut += face.area - meshArea;
-        continue;
-      }
-      const int a = face.axis, u = (a + 1) % 3, v = (a + 2) % 3;
-      const auto& A = bounds[static_cast<std::size_t>(a)];
-      const int clusterBoundary = nearestBoundary(A, clusterMeans[static_cast<std::size_t>(a)][static_cast<std::size_t>(face.group)]);
-      const bool drifting = clusterDrifts[static_cast<std::size_t>(a)][static_cast<std::size_t>(face.group)];
-      const dvec3 P0 = corner(f, 0), P1 = corner(f, 1), P2 = corner(f, 2);
-      Polygon2 tri;
-      tri.n = 3;
-      tri.p[0] = {P0[u], P0[v]};
-      tri.p[1] = {P1[u], P1[v]};
-      tri.p[2] = {P2[u], P2[v]};
-      const double projected = polygonArea(tri);
-      if (projected <= 0) continue;
-      const double toTrue = face.area / projected;
-      const auto& U = bounds[static_cast<std::size_t>(u)];
-      const auto& V = bounds[static_cast<std::size_t>(v)];
-      const int i0 = cellOf(U, std::min({P0[u], P1[u], P2[u]})), i1 = cellOf(U, std::max({P0[u], P1[u], P2[u]}));
-      const int j0 = cellOf(V, std::min({P0[v], P1[v], P2[v]})), j1 = cellOf(V, std::max({P0[v], P1[v], P2[v]}));
-      // The face's own plane lifts clipped pieces back to 3D (where along a the surface really
-      // is, and the complementary mesh's corners).
-      const dvec3 normal = face.areaVector / face.area;
-      const double d = glm::dot(normal, P0);
-      const auto onFacePlane = [&](const Polygon2& piece) {
-        std::array<dvec3, 12> corners{};
-        for (int m = 0; m < piece.n; ++m) {
-          dvec3& q = corners[static_cast<std::size_t>(m)];
-          q[u] = piece.p[static_cast<std::size_t>(m)].x;
-          q[v] = piece.p[static_cast<std::size_t>(m)].y;
-          q[a] = (d - normal[u] * q[u] - normal[v] * q[v]) / normal[a];
-        }
-        return corners;
-      };
-      // Cells (i, j) whose piece the mesh must show; a face mostly left to the mesh goes there
-      // whole instead.
-      std::vector<std::array<int, 2>> uncovered;
-      double uncoveredArea = 0, shownArea = 0;
-      for (int i = i0; i <= i1; ++i) {
-        // A column strip first, then its rows: two clips per cell instead of four.
-        Polygon2 strip = tri;
-        if (i0 != i1) {
-          clipAxis(strip, 0, U[static_cast<std::size_t>(i)], false);
-          clipAxis(strip, 0, U[static_cast<std::size_t>(i + 1)], true);
-          if (strip.n < 3) continue;
-        }
-        for (int j = j0; j <= j1; ++j) {
-          Polygon2 piece = strip;
-          if (j0 != j1) {
-            clipAxis(piece, 1, V[static_cast<std::size_t>(j)], false);
-            clipAxis(piece, 1, V[static_cast<std::size_t>(j + 1)], true);
-            if (piece.n < 3) continue;
-          }
-          const double pieceArea = polygonArea(piece) * toTrue;
-          if (pieceArea <= kMinPieceAreaM2) continue;  // a clipping sliver, not a piece of surface
-          // The piece's corners on its own plane: where along a the surface really is.
-          const std::array<dvec3, 12> corners = onFacePlane(piece);
-          double surfaceLo = std::numeric_limits<double>::infinity(), surfaceHi = -surfaceLo;
-          for (int m = 0; m < piece.n; ++m) {
-            surfaceLo = std::min(surfaceLo, corners[static_cast<std::size_t>(m)][a]);
-            surfaceHi = std::max(surfaceHi, corners[static_cast<std::size_t>(m)][a]);
-          }
-          // The cell faces at boundary kk under the piece: whether the cells below and above are
-          // solid there. A cell showing a quarter-round sub-block covers the piece only where S
-          // is solid under all of it; where the arc crosses it, the other side's cell shows it.
-          constexpr std::size_t kNoCell = std::numeric_limits<std::size_t>::max();
-          struct Sides {
-            std::size_t lo, hi;  // the cells below and above the boundary (kNoCell: beyond the grid)
-            bool solidLo, solidHi;
-          };
-          const auto sidesAt = [&](int kk) {
-            std::array<int, 3> lo{}, hi{};
-            lo[static_cast<std::size_t>(u)] = hi[static_cast<std::size_t>(u)] = i;
-            lo[static_cast<std::size_t>(v)] = hi[static_cast<std::size_t>(v)] = j;
-            lo[static_cast<std::size_t>(a)] = kk - 1;
-            hi[static_cast<std::size_t>(a)] = kk;
-            std::array<dvec3, 12> onBoundary = corners;
-            for (int m = 0; m < piece.n; ++m) onBoundary[static_cast<std::size_t>(m)][a] = A[static_cast<std::size_t>(kk)];
-            const std::span<const dvec3> points(onBoundary.data(), static_cast<std::size_t>(piece.n));
-            Sides s{kNoCell, kNoCell, false, false};
-            if (kk > 0) s.lo = index(lo), s.solidLo = solidAt(s.lo, points);
-            if (kk < n[static_cast<std::size_t>(a)]) s.hi = index(hi), s.solidHi = solidAt(s.hi, points);
-            return s;
-          };
-          // A face of a drifting chain (clusterIntervals) is cut across its steps: each piece
-          // starts at the boundary nearest to where it is.
-          const int k = drifting ? nearestBoundary(A, 0.5 * (surfaceLo + surfaceHi)) : clusterBoundary;
-          Sides sides = sidesAt(k);
-          // A slightly tilted face spans more than one boundary of its axis: where the cells at
-          // its boundary are both empty or both solid, the solid's face may be at another one,
-          // still within the tolerance of the surface (a wall 0.1 degree off over 10 m; the steps
-          // of a drifting facade). That face shows it, the nearest first; otherwise it would take
-          // the colour of the cell's other faces (a ground plate's) with the true wall in the
-          // mesh a few millimetres away.
-          for (int step = 1; sides.solidLo == sides.solidHi; ++step) {
-            bool inReach = false;
-            for (int kk : {k - step, k + step}) {
-              if (kk < 0 || kk > n[static_cast<std::size_t>(a)]) continue;
-              const double at = A[static_cast<std::size_t>(kk)];
-              if (at < surfaceLo - tol || at > surfaceHi + tol) continue;
-              inReach = true;
-              if (const Sides near = sidesAt(kk); near.solidLo != near.solidHi) {
-                sides = near;
-                break;
-              }
-            }
-            if (!inReach) break;
-          }
-          const bool solidLo = sides.solidLo, solidHi = sides.solidHi;
-          if (solidLo != solidHi) {
-            // The face is on the +a side of the cell below it, on the -a side of the cell above.
-            // One that faces into the solid is an inner face (the bottom of a dome standing on
-            // the roof): it only counts where nothing else covers the cell.
-            const bool facesOut = (normal[a] > 0) == solidLo;
-            out.shares.push_back({solidLo ? sides.lo : sides.hi, material, static_cast<std::uint8_t>(2 * a + (solidLo ? 1 : 0)),
-                                  facesOut ? pieceArea : kInnerFaceWeight * pieceArea});
-            out.nut += pieceArea;
-            shownArea += pieceArea;
-          } else if (!solidLo) {
-            // Empty on both sides: a thin sheet the mesh must show, or a strip thinner than the
-            // tolerance left over where boundaries merged, which is within the tolerance already.
-            double extent = 0;
-            for (int m = 0; m < piece.n; ++m)
-              extent = std::max(extent, glm::length(piece.p[static_cast<std::size_t>(m)] - piece.p[static_cast<std::size_t>((m + 1) % piece.n)]));
-            if (pieceArea < 0.5 * tol * extent) {
-              out.nut += pieceArea;
-              continue;
-            }
-            uncovered.push_back({i, j});
-            uncoveredArea += pieceArea;
-            if (sides.lo != kNoCell && trimmed.contains(sides.lo)) out.lost.push_back({sides.lo, material, static_cast<std::uint8_t>(2 * a + 1), pieceArea});
-            if (sides.hi != kNoCell && trimmed.contains(sides.hi)) out.lost.push_back({sides.hi, material, static_cast<std::uint8_t>(2 * a), pieceArea});
-            out.complementArea += pieceArea;
-          } else {
-            out.hidden += pieceArea;  // solid on both sides: an inner face nobody sees
-          }
-        }
-      }
-      if (uncovered.empty()) continue;
-      // The uncovered cells joined into rectangles (runs along v, then equal runs of neighbouring
-      // columns), each clipped from the face once.
-      std::vector<Polygon2> pieces;
-      int pieceTriangles = 0;
-      for (const CellRectangle& r : joinCells(uncovered)) {
-        Polygon2 piece = tri;
-        clipAxis(piece, 0, U[static_cast<std::size_t>(r.i0)], false);
-        clipAxis(piece, 0, U[static_cast<std::size_t>(r.i1 + 1)], true);
-        clipAxis(piece, 1, V[static_cast<std::size_t>(r.j0)], false);
-        clipAxis(piece, 1, V[static_cast<std::size_t>(r.j1 + 1)], true);
-        if (piece.n < 3) continue;
-        pieces.push_back(piece);
-        pieceTriangles += piece.n - 2;
-      }
-      // The face goes to the mesh whole when that takes fewer triangles than its pieces (a
-      // staircase of cells under a roof left to the mesh cuts a gable into a dozen), or when most
-      // of it is uncovered. Its covered part is then drawn twice, by its cells and by the face
-      // itself, in the face's own material and within the tolerance of the cells' surface.
-      if (pieceTriangles > 1 || 2 * uncoveredArea > face.area) {
-        const dvec3 tri3[3] = {P0, P1, P2};
-        addComplementPolygon(tri3, 3, material);
-        out.drawnTwice += shownArea;
-        continue;
-      }
-      for (const Polygon2& piece : pieces) addComplementPolygon(onFacePlane(piece).data(), piece.n, material);
+      const FaceKind kind = faces[f].kind;
+      if (shownByMesh(f))
+        giveFaceToMesh(*this, f, out);
+      else if (kind == FaceKind::Slope || kind == FaceKind::Quadric)
+        shareSlopeOrCurvedFace(*this, f, out);
+      else
+        shareAxisAlignedFace(*this, f, out);
     }
   });
   std::vector<Share> shares = wedgeShares;
   lost.clear();
-  for (Chunk& c : chunks) {
+  for (ShareChunk& c : chunks) {
     shares.insert(shares.end(), c.shares.begin(), c.shares.end());
     lost.insert(lost.end(), c.lost.begin(), c.lost.end());
     const auto base = static_cast<std::uint32_t>(complement.positions.size());
-    complement.positions.insert(complement.positions.end(), c.complement.positions.begin(), c.complement.positions.end());
-    for (const auto& t : c.complement.triangles) complement.triangles.push_back({t[0] + base, t[1] + base, t[2] + base});
+    complement.positions.insert(complement.positions.end(), c.complement.positions.begin(),
+                                c.complement.positions.end());
+    for (const auto& t : c.complement.triangles)
+      complement.triangles.push_back({t[0] + base, t[1] + base, t[2] + base});
     complement.triangleMaterial.insert(complement.triangleMaterial.end(), c.complement.triangleMaterial.begin(),
-                                        c.complement.triangleMaterial.end());
+                                       c.complement.triangleMaterial.end());
     area.nutAreaM2 += c.nut;
     area.complementAreaM2 += c.complementArea;
     area.hiddenAreaM2 += c.hidden;
@@ -325,7 +391,8 @@ std::vector<Builder::Share> Builder::computeShares(Mesh& complement, SolidStats&
 // under a roof slope), a boundary is proposed that gives the smaller one a cell of its own: in
 // the middle for opposite faces, a little inside the smaller face otherwise. Conflicts too small
 // alone are proposed where, summed by place, they reach the surface share together.
-std::array<std::vector<double>, 3> Builder::materialConflicts(const std::vector<Share>& shares, double& conflictArea) const {
+std::array<std::vector<double>, 3> Builder::materialConflicts(const std::vector<Share>& shares,
+                                                              double& conflictArea) const {
   conflictArea = 0;
   std::array<std::vector<double>, 3> proposals;
   // Conflicts too small on their own, by the place their boundary would go: a boundary that
@@ -362,11 +429,13 @@ std::array<std::vector<double>, 3> Builder::materialConflicts(const std::vector<
                          static_cast<int>(cell / (static_cast<std::size_t>(n[0]) * static_cast<std::size_t>(n[1])))};
     for (int side = 0; side < 6; ++side) {
       const double area = sideArea[static_cast<std::size_t>(side)];
-      if (side == best || area <= 0 || sideMaterial[static_cast<std::size_t>(side)] == sideMaterial[static_cast<std::size_t>(best)])
+      if (side == best || area <= 0 ||
+          sideMaterial[static_cast<std::size_t>(side)] == sideMaterial[static_cast<std::size_t>(best)])
         continue;
       const int a = side / 2;
       const auto& B = bounds[static_cast<std::size_t>(a)];
-      const double lo = B[static_cast<std::size_t>(c[static_cast<std::size_t>(a)])], hi = B[static_cast<std::size_t>(c[static_cast<std::size_t>(a)] + 1)];
+      const double lo = B[static_cast<std::size_t>(c[static_cast<std::size_t>(a)])],
+                   hi = B[static_cast<std::size_t>(c[static_cast<std::size_t>(a)] + 1)];
       if (hi - lo < 2 * inset) continue;
       const double at = best / 2 == a && best < 6 ? 0.5 * (lo + hi) : side % 2 ? hi - inset : lo + inset;
       if (area < kConflictShareOfCell * total && area < kConflictShareOfSurface * stats.areaM2) {
@@ -436,7 +505,8 @@ void Builder::assignMaterials(Block& block, std::vector<Block>& subBlocks, const
       materialArea[shares[j].material] += shares[j].area;
       ++j;
     }
-    chosen[shares[i].cell] = static_cast<std::uint16_t>(std::max_element(materialArea.begin(), materialArea.end()) - materialArea.begin());
+    chosen[shares[i].cell] =
+        static_cast<std::uint16_t>(std::max_element(materialArea.begin(), materialArea.end()) - materialArea.begin());
     if (const int piece = subPiece[shares[i].cell]; piece >= 0) {
       const QuadricPiece& q = quadrics[static_cast<std::size_t>(piece)];
       auto& area = layerArea[static_cast<std::size_t>(piece)];
@@ -475,7 +545,8 @@ void Builder::assignMaterials(Block& block, std::vector<Block>& subBlocks, const
           s.boundsM[static_cast<std::size_t>(a)].push_back(snapToUnits(B[static_cast<std::size_t>(k)] - base));
     }
     s.cells = layers;
-    for (const Cell& c : layers) (q.planar ? stats.pyramidCells : q.octant() ? stats.sphereOctantCells : stats.quadricCells) += c.solid.index != 0;
+    for (const Cell& c : layers)
+      (q.planar ? stats.pyramidCells : q.octant() ? stats.sphereOctantCells : stats.quadricCells) += c.solid.index != 0;
     stats.solidCells += static_cast<long long>(layers.size());
     const SharedSubBlock shown = shareTurned(subBlocks, std::move(s));
     const auto firstRecord = static_cast<std::ptrdiff_t>(block.redirections.size());
@@ -489,9 +560,13 @@ void Builder::assignMaterials(Block& block, std::vector<Block>& subBlocks, const
           glm::dvec3 offset(0.0);
           for (int a = 0; a < 3; ++a)
             if (a != q.e || !uniform || q.octant())
-              offset[a] = -snapToUnits(bounds[static_cast<std::size_t>(a)][static_cast<std::size_t>(c[static_cast<std::size_t>(a)])] -
-                                       bounds[static_cast<std::size_t>(a)][static_cast<std::size_t>(q.lo[static_cast<std::size_t>(a)])]);
-          const Redirection r{shown.target, offset + shown.offsetM, Rotation{static_cast<std::uint8_t>(shown.cube), 0}, {false, false, false}};
+              offset[a] = -snapToUnits(
+                  bounds[static_cast<std::size_t>(a)][static_cast<std::size_t>(c[static_cast<std::size_t>(a)])] -
+                  bounds[static_cast<std::size_t>(a)][static_cast<std::size_t>(q.lo[static_cast<std::size_t>(a)])]);
+          const Redirection r{shown.target,
+                              offset + shown.offsetM,
+                              Rotation{static_cast<std::uint8_t>(shown.cube), 0},
+                              {false, false, false}};
           const auto shared = std::find(block.redirections.begin() + firstRecord, block.redirections.end(), r);
           block.cells[index(c)] = Cell::redirect(static_cast<std::uint32_t>(shared - block.redirections.begin()));
           if (shared == block.redirections.end()) block.redirections.push_back(r);
