@@ -207,6 +207,22 @@ TEST(ConvertErrors, AMeshLargerThanAnHniIsRefusedNamingTheAxis) {
   }
 }
 
+// A grid above SolidOptions::maxCells is refused with its size and what to change, not
+// allocated: three boxes apart have 6 boundaries along x (0, 1, 2, 3, 3.5, 4) and 2 along y and
+// z, 5 x 1 x 1 cells.
+TEST(ConvertErrors, AGridAboveTheCellLimitIsRefusedWithItsSize) {
+  const std::string threeBoxes =
+      boxObj({0, 0, 0}, {1, 1, 1}) + boxObjAfter(8, {2, 0, 0}, {3, 1, 1}) + boxObjAfter(16, {3.5, 0, 0}, {4, 1, 1});
+  ConvertOptions options;
+  options.solid.maxCells = 3;
+  auto c = convertText("cells", threeBoxes, options);
+  ASSERT_FALSE(c.ok());
+  const std::string expected = "cells: the grid would have 5 x 1 x 1 cells, more than 3; raise --tolerance";
+  EXPECT_EQ(c.error().message.rfind(expected, 0), 0u) << c.error().message;
+  options.solid.maxCells = 64;
+  EXPECT_TRUE(convertText("cells", threeBoxes, options).ok());
+}
+
 // Messy soups on a small lattice (coincident and collinear corners, duplicate, flipped and
 // crossing faces, open and non-manifold edges, slopes of every ratio) either convert to an HNI
 // that validates and decodes, or fail with a message naming the mesh. 150 seeded soups.

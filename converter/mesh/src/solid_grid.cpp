@@ -96,11 +96,13 @@ struct Interval {
   double lo, hi, centre, weight;
   std::uint32_t item;
 };
-std::vector<double> clusterIntervals(std::vector<Interval> items, double tolerance, double size, std::vector<int>& cluster,
-                                     std::vector<bool>& drifts) {
+std::vector<double> clusterIntervals(std::vector<Interval> items, double tolerance, double size,
+                                     std::vector<int>& cluster, std::vector<bool>& drifts) {
   std::sort(items.begin(), items.end(), [](const Interval& a, const Interval& b) { return a.lo < b.lo; });
   std::vector<double> means;
-  const auto atEnds = [&](double lo, double hi, double mean) { return lo <= tolerance ? 0.0 : hi >= size - tolerance ? size : mean; };
+  const auto atEnds = [&](double lo, double hi, double mean) {
+    return lo <= tolerance ? 0.0 : hi >= size - tolerance ? size : mean;
+  };
   const auto close = [&](std::span<Interval> members, double lo, double hi) {
     const auto merged = [&] {
       double sum = 0, weight = 0;
@@ -210,11 +212,13 @@ void findCreasePoints(std::vector<SlopePlane>& slopes, const std::vector<std::ar
         if (std::tie(b.x, b.y, b.z) < std::tie(a.x, a.y, a.z)) std::swap(a, b);
         edges.push_back({{a.x, a.y, a.z, b.x, b.y, b.z}, id});
       }
-  std::sort(edges.begin(), edges.end(), [](const Edge& x, const Edge& y) { return x.key != y.key ? x.key < y.key : x.plane < y.plane; });
+  std::sort(edges.begin(), edges.end(),
+            [](const Edge& x, const Edge& y) { return x.key != y.key ? x.key < y.key : x.plane < y.plane; });
   for (std::size_t i = 0; i < edges.size();) {
     std::size_t j = i + 1;
     while (j < edges.size() && edges[j].key == edges[i].key) ++j;
-    const dvec3 a(edges[i].key[0], edges[i].key[1], edges[i].key[2]), b(edges[i].key[3], edges[i].key[4], edges[i].key[5]);
+    const dvec3 a(edges[i].key[0], edges[i].key[1], edges[i].key[2]),
+        b(edges[i].key[3], edges[i].key[4], edges[i].key[5]);
     // Exactly two faces, of slopes along different axes.
     if (j == i + 2 && slopes[edges[i].plane].e != slopes[edges[i + 1].plane].e)
       for (std::size_t m = i; m < j; ++m) {
@@ -223,7 +227,8 @@ void findCreasePoints(std::vector<SlopePlane>& slopes, const std::vector<std::ar
         const dvec2 t(-plane.n.y, plane.n.x);
         const double ds = glm::dot(t, dvec2(b[u] - a[u], b[v] - a[v])), de = b[e] - a[e];
         if (std::abs(ds) <= tol || std::abs(de) <= tol) continue;  // along or across the slope
-        const int steps = std::clamp(static_cast<int>(std::min(std::abs(ds), std::abs(de)) / (kCreaseMinStep * tol)), 1, kCreaseSteps);
+        const int steps = std::clamp(static_cast<int>(std::min(std::abs(ds), std::abs(de)) / (kCreaseMinStep * tol)), 1,
+                                     kCreaseSteps);
         for (int k = 1; k < steps; ++k) plane.creasePoints.push_back(a + (static_cast<double>(k) / steps) * (b - a));
       }
     i = j;
@@ -263,8 +268,8 @@ void Builder::analyseFaces() {
   }
   std::vector<int> cluster(faces.size(), -1);
   for (int a = 0; a < 3; ++a) {
-    clusterMeans[static_cast<std::size_t>(a)] =
-        clusterIntervals(intervals[static_cast<std::size_t>(a)], tol, size[a], cluster, clusterDrifts[static_cast<std::size_t>(a)]);
+    clusterMeans[static_cast<std::size_t>(a)] = clusterIntervals(intervals[static_cast<std::size_t>(a)], tol, size[a],
+                                                                 cluster, clusterDrifts[static_cast<std::size_t>(a)]);
     stats.planes[static_cast<std::size_t>(a)] = static_cast<int>(clusterMeans[static_cast<std::size_t>(a)].size());
   }
   for (std::uint32_t f = 0; f < faces.size(); ++f)
@@ -292,9 +297,8 @@ void Builder::findSlopes() {
     const dvec3 centre = (corner(f, 0) + corner(f, 1) + corner(f, 2)) / 3.0;
     items.push_back({e, std::atan2(n2.y, n2.x), glm::dot(n2, dvec2(centre[kU[e]], centre[kV[e]])), f});
   }
-  std::sort(items.begin(), items.end(), [](const Item& a, const Item& b) {
-    return a.e != b.e ? a.e < b.e : a.angle < b.angle;
-  });
+  std::sort(items.begin(), items.end(),
+            [](const Item& a, const Item& b) { return a.e != b.e ? a.e < b.e : a.angle < b.angle; });
   const double angleTol = options.angleToleranceDeg * std::numbers::pi / 180.0;
   std::size_t i = 0;
   while (i < items.size()) {
@@ -335,7 +339,8 @@ void Builder::findSlopes() {
         }
       }
       plane.offset = offsetSum / plane.area;
-      plane.material = static_cast<std::uint16_t>(std::max_element(materialArea.begin(), materialArea.end()) - materialArea.begin());
+      plane.material =
+          static_cast<std::uint16_t>(std::max_element(materialArea.begin(), materialArea.end()) - materialArea.begin());
       const auto id = static_cast<int>(slopes.size());
       for (std::uint32_t f : plane.faces) faces[f].group = id;
       slopes.push_back(std::move(plane));
@@ -377,7 +382,8 @@ void Builder::findMaterialEdges() {
       for (int c = 0; c < 3; ++c) {
         const int along = 3 - face.axis - c;
         if (c != face.axis && std::abs(a[c] - b[c]) <= tol && std::abs(a[along] - b[along]) > tol)
-          edges.push_back({face.axis, face.group, c, 0.5 * (a[c] + b[c]), std::abs(a[along] - b[along]), mesh.triangleMaterial[f]});
+          edges.push_back(
+              {face.axis, face.group, c, 0.5 * (a[c] + b[c]), std::abs(a[along] - b[along]), mesh.triangleMaterial[f]});
       }
     }
   }
@@ -474,7 +480,8 @@ void Builder::closeSlopes() {
     int offDiagonal = 0;  // columns (u cells) of accepted slopes that do not run corner to corner
   };
   // The boundaries with one more slope closed, or nothing when that adds too many.
-  const auto close = [&](const Closure& c, const SlopePlane& plane, bool creases) -> std::optional<std::array<std::vector<double>, 3>> {
+  const auto close = [&](const Closure& c, const SlopePlane& plane,
+                         bool creases) -> std::optional<std::array<std::vector<double>, 3>> {
     std::array<std::vector<double>, 3> trial = c.bounds;
     const int u = kU[plane.e], v = kV[plane.e];
     insertBoundaries(trial[static_cast<std::size_t>(plane.e)], {plane.e0, plane.e1}, size[plane.e], tol);
@@ -515,7 +522,8 @@ void Builder::closeSlopes() {
       bool any = false;
       for (int a = 0; a < 3; ++a) {
         const std::size_t before = trial[static_cast<std::size_t>(a)].size();
-        insertBoundaries(trial[static_cast<std::size_t>(a)], std::move(added[static_cast<std::size_t>(a)]), size[a], tol);
+        insertBoundaries(trial[static_cast<std::size_t>(a)], std::move(added[static_cast<std::size_t>(a)]), size[a],
+                         tol);
         any = any || trial[static_cast<std::size_t>(a)].size() > before;
       }
       converged = !any;
@@ -524,7 +532,8 @@ void Builder::closeSlopes() {
     bool withinBudget = true;
     for (int a = 0; a < 3; ++a) {
       growth += trial[static_cast<std::size_t>(a)].size() - c.bounds[static_cast<std::size_t>(a)].size();
-      withinBudget = withinBudget && trial[static_cast<std::size_t>(a)].size() <= initial[static_cast<std::size_t>(a)] + kMaxSlopeBoundariesPerAxis;
+      withinBudget = withinBudget && trial[static_cast<std::size_t>(a)].size() <=
+                                         initial[static_cast<std::size_t>(a)] + kMaxSlopeBoundariesPerAxis;
     }
     if (growth > 2 * crossed + 8 + own || !withinBudget || (own > 0 && !converged)) return std::nullopt;
     return trial;
@@ -556,32 +565,37 @@ void Builder::closeSlopes() {
       for (int i = cellOf(U, sp.uMin() + tol); i <= cellOf(U, sp.uMax() - tol); ++i) {
         const double va = sp.vAt(U[static_cast<std::size_t>(i)]), vb = sp.vAt(U[static_cast<std::size_t>(i + 1)]);
         const int j = nearestBoundary(V, std::min(va, vb));
-        c.offDiagonal += j + 1 >= static_cast<int>(V.size()) || std::abs(V[static_cast<std::size_t>(j)] - std::min(va, vb)) > tol ||
+        c.offDiagonal += j + 1 >= static_cast<int>(V.size()) ||
+                         std::abs(V[static_cast<std::size_t>(j)] - std::min(va, vb)) > tol ||
                          std::abs(V[static_cast<std::size_t>(j + 1)] - std::max(va, vb)) > tol;
       }
     }
     return c;
   };
   Closure chosen = closeAll(false);
-  if (std::any_of(slopes.begin(), slopes.end(), [](const SlopePlane& sp) { return sp.represented && !sp.creasePoints.empty(); })) {
+  if (std::any_of(slopes.begin(), slopes.end(),
+                  [](const SlopePlane& sp) { return sp.represented && !sp.creasePoints.empty(); })) {
     Closure creased = closeAll(true);
-    if (creased.rejected.size() <= chosen.rejected.size() && creased.offDiagonal <= chosen.offDiagonal) chosen = std::move(creased);
+    if (creased.rejected.size() <= chosen.rejected.size() && creased.offDiagonal <= chosen.offDiagonal)
+      chosen = std::move(creased);
   }
   for (const std::size_t id : chosen.rejected) slopes[id].represented = false;
   bounds = std::move(chosen.bounds);
   for (int a = 0; a < 3; ++a)
-    stats.slopeBoundaries += static_cast<long long>(bounds[static_cast<std::size_t>(a)].size() - initial[static_cast<std::size_t>(a)]);
+    stats.slopeBoundaries +=
+        static_cast<long long>(bounds[static_cast<std::size_t>(a)].size() - initial[static_cast<std::size_t>(a)]);
 }
 
 }  // namespace solid
 
 using namespace solid;
 
-Result<SolidGrid> buildSolidGrid(const Mesh& mesh, const SolidOptions& asked) {
-  if (mesh.triangles.empty()) return Error{mesh.name + ": no triangles to convert"};
-  SolidOptions options = asked;
-  if (options.enclosing) options.closedSurface = false;
-  Builder builder(mesh, options);
+namespace {
+
+// The mesh in the grid frame (its bounding box's minimum at the origin), and the grid's size,
+// which an HNI must be able to hold.
+Status placeMesh(Builder& builder) {
+  const Mesh& mesh = builder.mesh;
   const WorldBox box = mesh.bounds();
   builder.origin = box.min;
   builder.size = box.max - box.min;
@@ -602,6 +616,52 @@ Result<SolidGrid> buildSolidGrid(const Mesh& mesh, const SolidOptions& asked) {
       return Error{mesh.name + ": the mesh is flat along " + std::string(1, "xyz"[a]) +
                    " (thinner than 1 mm), so it encloses no volume to convert"};
   for (int a = 0; a < 3; ++a) builder.size[a] = std::max(snapToUnits(builder.size[a]), 0.001);
+  return Ok{};
+}
+
+// The cells of the boundaries just built, all unclassified; refused above SolidOptions::maxCells.
+Status allocateCells(Builder& builder) {
+  std::size_t cells = 1;
+  for (std::size_t a = 0; a < 3; ++a) {
+    builder.n[a] = static_cast<int>(builder.bounds[a].size()) - 1;
+    builder.stats.cells[a] = builder.n[a];
+    cells *= static_cast<std::size_t>(builder.n[a]);
+  }
+  if (cells > builder.options.maxCells)
+    return Error{builder.mesh.name + ": the grid would have " + std::to_string(builder.n[0]) + " x " +
+                 std::to_string(builder.n[1]) + " x " + std::to_string(builder.n[2]) + " cells, more than " +
+                 std::to_string(builder.options.maxCells) + "; raise --tolerance to merge nearby planes"};
+  builder.shape.assign(cells, Builder::kUnclassified);
+  builder.hint.assign(cells, 0);
+  return Ok{};
+}
+
+// Proposed boundaries not yet there (nor within a tolerance of one another) go into the next
+// build; `count` counts them. Returns whether there were any.
+bool addBoundaries(Builder& builder, std::array<std::vector<double>, 3> proposals, long long& count) {
+  bool added = false;
+  for (std::size_t a = 0; a < 3; ++a) {
+    auto& list = proposals[a];
+    std::sort(list.begin(), list.end());
+    std::vector<double> fresh;
+    for (double p : list)
+      if (!hasBoundaryNear(builder.bounds[a], p, builder.tol) && (fresh.empty() || p - fresh.back() > builder.tol))
+        fresh.push_back(p);
+    builder.extraBounds[a].insert(builder.extraBounds[a].end(), fresh.begin(), fresh.end());
+    count += static_cast<long long>(fresh.size());
+    added = added || !fresh.empty();
+  }
+  return added;
+}
+
+}  // namespace
+
+Result<SolidGrid> buildSolidGrid(const Mesh& mesh, const SolidOptions& asked) {
+  if (mesh.triangles.empty()) return Error{mesh.name + ": no triangles to convert"};
+  SolidOptions options = asked;
+  if (options.enclosing) options.closedSurface = false;
+  Builder builder(mesh, options);
+  if (Status s = placeMesh(builder); !s) return s.error();
 
   using Clock = std::chrono::steady_clock;
   auto mark = Clock::now();
@@ -612,7 +672,7 @@ Result<SolidGrid> buildSolidGrid(const Mesh& mesh, const SolidOptions& asked) {
     return s;
   };
   builder.analyseFaces();
-  builder.findQuadrics();  // before slopes: a quarter cylinder's faces are sloped too
+  builder.findQuadrics();       // before slopes: a quarter cylinder's faces are sloped too
   builder.findSphereOctants();  // a dome's faces near its quarters' seams may be sloped too
   builder.findCornerSlopes();   // planar faces sloped along three axes, the domes' taken
   builder.findSlopes();
@@ -635,18 +695,7 @@ Result<SolidGrid> buildSolidGrid(const Mesh& mesh, const SolidOptions& asked) {
     builder.addQuadricBounds();
     builder.stats.slopeBoundaries = 0;  // closeSlopes counts this attempt's
     builder.closeSlopes();
-    std::size_t cells = 1;
-    for (int a = 0; a < 3; ++a) {
-      builder.n[static_cast<std::size_t>(a)] = static_cast<int>(builder.bounds[static_cast<std::size_t>(a)].size()) - 1;
-      builder.stats.cells[static_cast<std::size_t>(a)] = builder.n[static_cast<std::size_t>(a)];
-      cells *= static_cast<std::size_t>(builder.n[static_cast<std::size_t>(a)]);
-    }
-    if (cells > options.maxCells)
-      return Error{mesh.name + ": the grid would have " + std::to_string(builder.n[0]) + " x " + std::to_string(builder.n[1]) +
-                   " x " + std::to_string(builder.n[2]) + " cells, more than " + std::to_string(options.maxCells) +
-                   "; raise --tolerance to merge nearby planes"};
-    builder.shape.assign(cells, Builder::kUnclassified);
-    builder.hint.assign(cells, 0);
+    if (Status s = allocateCells(builder); !s) return s.error();
     builder.stats.planesSeconds += lap();
     ++builder.stats.gridBuilds;
     builder.stats.slopesAsWedges = 0;
@@ -674,26 +723,13 @@ Result<SolidGrid> buildSolidGrid(const Mesh& mesh, const SolidOptions& asked) {
     auto conflicts = builder.materialConflicts(shares, conflictArea);
     builder.stats.conflictAreaM2 = conflictArea;
     if (attempt < kAttempts) {
-      // Boundaries not yet there (nor within a tolerance of one another) go into the next build.
-      const auto addBoundaries = [&](std::array<std::vector<double>, 3> proposals, long long& count) {
-        for (int a = 0; a < 3; ++a) {
-          auto& list = proposals[static_cast<std::size_t>(a)];
-          std::sort(list.begin(), list.end());
-          std::vector<double> fresh;
-          for (double p : list)
-            if (!hasBoundaryNear(builder.bounds[static_cast<std::size_t>(a)], p, builder.tol) && (fresh.empty() || p - fresh.back() > builder.tol))
-              fresh.push_back(p);
-          auto& extra = builder.extraBounds[static_cast<std::size_t>(a)];
-          extra.insert(extra.end(), fresh.begin(), fresh.end());
-          count += static_cast<long long>(fresh.size());
-          again = again || !fresh.empty();
-        }
-      };
       // Conflicts on a sliver of the surface are not worth another build of the grid.
-      if (conflictArea > kConflictShareForRebuild * area.nutAreaM2) addBoundaries(conflicts, builder.stats.materialBoundaries);
+      if (conflictArea > kConflictShareForRebuild * area.nutAreaM2)
+        again = addBoundaries(builder, std::move(conflicts), builder.stats.materialBoundaries) || again;
       // Splits of trimmed cells are taken once: the cells they leave cut would propose splits of
       // their own, and so on down a roof.
-      if (builder.stats.trimBoundaries == 0) addBoundaries(builder.proposeTrimSplits(lost, winding), builder.stats.trimBoundaries);
+      if (builder.stats.trimBoundaries == 0)
+        again = addBoundaries(builder, builder.proposeTrimSplits(lost, winding), builder.stats.trimBoundaries) || again;
     }
     builder.stats.materialsSeconds += lap();
     if (!again) break;
