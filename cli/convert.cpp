@@ -32,30 +32,36 @@ struct ConvertCliOptions {
   std::string input, output, complement, report;
   double toleranceM = 0.01;
   double angleDeg = 1.0;
-  bool zUp = false, quiet = false, noAutoBlocks = false, noWedges = false, noAlign = false, noAxisOrder = false, noWings = false;
+  bool zUp = false, quiet = false, noAutoBlocks = false, noWedges = false, noAlign = false, noAxisOrder = false,
+       noWings = false;
   std::vector<std::string> blocks;
   int threads = 0;
   std::string pngEffort = "smallest";
 };
 
-PngEffort effortOf(const ConvertCliOptions& o) { return o.pngEffort == "small" ? PngEffort::Small : PngEffort::Smallest; }
+PngEffort effortOf(const ConvertCliOptions& o) {
+  return o.pngEffort == "small" ? PngEffort::Small : PngEffort::Smallest;
+}
 
 // A progress bar on stderr: redrawn in place on a terminal, one line per phase otherwise.
 class ProgressBar {
  public:
-  ProgressBar(bool enabled, std::string label) : enabled_(enabled), tty_(isatty(fileno(stderr)) != 0), label_(std::move(label)) {}
+  ProgressBar(bool enabled, std::string label)
+      : enabled_(enabled), tty_(isatty(fileno(stderr)) != 0), label_(std::move(label)) {}
   ~ProgressBar() { finish(); }
   void update(std::string_view phase, double fraction) {
     if (!enabled_) return;
     const int percent = static_cast<int>(100 * fraction);
     if (phase == phase_ && (percent == percent_ || !tty_)) return;
-    if (phase != phase_ && !tty_) std::fprintf(stderr, "convert: %s: %.*s\n", label_.c_str(), static_cast<int>(phase.size()), phase.data());
+    if (phase != phase_ && !tty_)
+      std::fprintf(stderr, "convert: %s: %.*s\n", label_.c_str(), static_cast<int>(phase.size()), phase.data());
     phase_ = std::string(phase);
     percent_ = percent;
     if (!tty_) return;
     constexpr int kWidth = 30;
     const int filled = kWidth * percent / 100;
-    std::fprintf(stderr, "\r%s %-8s [%s%s] %3d%%", label_.c_str(), phase_.c_str(), std::string(static_cast<std::size_t>(filled), '#').c_str(),
+    std::fprintf(stderr, "\r%s %-8s [%s%s] %3d%%", label_.c_str(), phase_.c_str(),
+                 std::string(static_cast<std::size_t>(filled), '#').c_str(),
                  std::string(static_cast<std::size_t>(kWidth - filled), '.').c_str(), percent);
     drawn_ = true;
   }
@@ -78,22 +84,23 @@ Result<WorldBox> parseBox(const std::string& text) {
                   &tail) != 6)
     return Error{"--block '" + text + "': expected x0,y0,z0:x1,y1,z1 in metres"};
   for (int a = 0; a < 3; ++a)
-    if (!(b.max[a] > b.min[a])) return Error{"--block '" + text + "': the second corner must exceed the first on every axis"};
+    if (!(b.max[a] > b.min[a]))
+      return Error{"--block '" + text + "': the second corner must exceed the first on every axis"};
   return b;
 }
 
 void printSummary(const converter::ConvertReport& r, const std::string& output) {
   const auto& s = r.solid;
   std::fprintf(stderr, "convert: %s: %s\n", r.name.c_str(), r.check.summary().c_str());
-  std::fprintf(stderr,
-               "convert: %s: yaw %.2f deg (%s); grid %dx%dx%d, %lld solid cells (%lld wedges), %d blocks; surface %.1f %% "
-               "NUT, %.1f %% complementary mesh (%zu triangles)\n",
-               r.name.c_str(), r.yawDeg, r.yawApplied ? "converted in that frame" : "not aligned", s.cells[0], s.cells[1],
-               s.cells[2], s.solidCells, s.wedgeCells, r.hni.blocks,
-               s.areaM2 > 0 ? 100 * s.nutAreaM2 / s.areaM2 : 0.0, s.areaM2 > 0 ? 100 * s.complementAreaM2 / s.areaM2 : 0.0,
-               r.complementTriangles);
-  std::fprintf(stderr, "convert: wrote %s (%dx%d, %lld bytes raw, %ju bytes PNG) in %.2f s\n", output.c_str(), r.hni.width,
-               r.hni.height, r.hni.bytesRaw, r.pngBytes, r.seconds());
+  std::fprintf(
+      stderr,
+      "convert: %s: yaw %.2f deg (%s); grid %dx%dx%d, %lld solid cells (%lld wedges), %d blocks; surface %.1f %% "
+      "NUT, %.1f %% complementary mesh (%zu triangles)\n",
+      r.name.c_str(), r.yawDeg, r.yawApplied ? "converted in that frame" : "not aligned", s.cells[0], s.cells[1],
+      s.cells[2], s.solidCells, s.wedgeCells, r.hni.blocks, s.areaM2 > 0 ? 100 * s.nutAreaM2 / s.areaM2 : 0.0,
+      s.areaM2 > 0 ? 100 * s.complementAreaM2 / s.areaM2 : 0.0, r.complementTriangles);
+  std::fprintf(stderr, "convert: wrote %s (%dx%d, %lld bytes raw, %ju bytes PNG) in %.2f s\n", output.c_str(),
+               r.hni.width, r.hni.height, r.hni.bytesRaw, r.pngBytes, r.seconds());
 }
 
 int fail(const std::string& message, int code) {
@@ -101,12 +108,7 @@ int fail(const std::string& message, int code) {
   return code;
 }
 
-int run(const ConvertCliOptions& o) {
-  {
-    std::ifstream probe(o.input, std::ios::binary);
-    std::error_code ec;
-    if (!probe || fs::is_directory(o.input, ec)) return fail(o.input + ": cannot open", kUnreadable);
-  }
+Result<converter::ConvertOptions> convertOptionsOf(const ConvertCliOptions& o) {
   converter::ConvertOptions options;
   options.solid.toleranceM = o.toleranceM;
   options.solid.angleToleranceDeg = o.angleDeg;
@@ -119,78 +121,77 @@ int run(const ConvertCliOptions& o) {
   options.axisOrder = !o.noAxisOrder;
   for (const std::string& text : o.blocks) {
     auto box = parseBox(text);
-    if (!box) return fail(box.error().message, kUsage);
+    if (!box) return box.error();
     options.blocks.manual.push_back(*box);
   }
+  return options;
+}
 
-  auto obj = converter::readObj(o.input, {o.zUp});
-  if (!obj) return fail(obj.error().message, kInvalid);
-  if (!o.quiet)
-    for (const std::string& w : obj->warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
-
-  const bool toFolder = fs::path(o.output).extension() != ".png";
-  if (!toFolder) {
-    // The whole file is one building.
-    const std::string name = fs::path(o.input).stem().string();
-    converter::Mesh mesh = obj->objects.size() == 1 ? std::move(obj->objects[0]) : converter::mergeObjects(obj->objects, name);
-    mesh.name = name;
-    ProgressBar bar(!o.quiet, name);
-    options.progress = [&](std::string_view phase, double f) { bar.update(phase, f); };
-    auto conversion = converter::convertMesh(std::move(mesh), options);
-    if (conversion) bar.update("write", 0);  // Zopfli takes about a second per 150 KB of pixels
-    bar.finish();
-    if (!conversion) {
-      const std::string hint = obj->objects.size() > 1 ? " (the file holds " + std::to_string(obj->objects.size()) +
-                                                             " objects: -o FOLDER converts each on its own)"
-                                                       : "";
-      return fail(o.input + ": " + conversion.error().message + hint, kInvalid);
-    }
-    if (Status s = converter::writeConversion(*conversion, o.output, o.complement, effortOf(o)); !s) return fail(s.error().message, kUnreadable);
-    if (!o.report.empty())
-      if (Status s = writeTextFile(o.report, converter::reportJson(conversion->report)); !s) return fail(s.error().message, kUnreadable);
-    if (!o.quiet) printSummary(conversion->report, o.output);
-    return kOk;
+// The whole file as one building: one HNI, its complementary mesh and report where asked.
+int convertOneBuilding(const ConvertCliOptions& o, converter::ObjContents& obj, converter::ConvertOptions options) {
+  const std::string name = fs::path(o.input).stem().string();
+  converter::Mesh mesh =
+      obj.objects.size() == 1 ? std::move(obj.objects[0]) : converter::mergeObjects(obj.objects, name);
+  mesh.name = name;
+  ProgressBar bar(!o.quiet, name);
+  options.progress = [&](std::string_view phase, double f) { bar.update(phase, f); };
+  auto conversion = converter::convertMesh(std::move(mesh), options);
+  if (conversion) bar.update("write", 0);  // Zopfli takes about a second per 150 KB of pixels
+  bar.finish();
+  if (!conversion) {
+    const std::string hint = obj.objects.size() > 1 ? " (the file holds " + std::to_string(obj.objects.size()) +
+                                                          " objects: -o FOLDER converts each on its own)"
+                                                    : "";
+    return fail(o.input + ": " + conversion.error().message + hint, kInvalid);
   }
+  if (Status s = converter::writeConversion(*conversion, o.output, o.complement, effortOf(o)); !s)
+    return fail(s.error().message, kUnreadable);
+  if (!o.report.empty())
+    if (Status s = writeTextFile(o.report, converter::reportJson(conversion->report)); !s)
+      return fail(s.error().message, kUnreadable);
+  if (!o.quiet) printSummary(conversion->report, o.output);
+  return kOk;
+}
 
-  // One HNI per object, a complementary mesh beside each that has one, and city.json.
-  if (!o.complement.empty()) return fail("--complement names one file; with -o FOLDER each building's complementary mesh is written into the folder", kUsage);
-  std::error_code ec;
-  fs::create_directories(o.output, ec);
-  if (ec) return fail(o.output + ": cannot create folder (" + ec.message() + ")", kUnreadable);
-  converter::CityManifest city;
-  city.name = fs::path(o.input).stem().string();
-  // File names first, in the objects' order: a name used twice gets _2, _3, ...
-  const std::size_t count = obj->objects.size();
-  std::vector<std::string> stems(count);
+// File names for the objects, in their order: a name used twice gets _2, _3, ...
+std::vector<std::string> fileStems(const std::vector<converter::Mesh>& objects) {
+  std::vector<std::string> stems;
   std::set<std::string> used;
-  for (std::size_t i = 0; i < count; ++i) {
-    std::string stem = converter::safeFileStem(obj->objects[i].name);
-    for (int k = 2; used.count(stem); ++k) stem = converter::safeFileStem(obj->objects[i].name) + "_" + std::to_string(k);
+  for (const converter::Mesh& object : objects) {
+    std::string stem = converter::safeFileStem(object.name);
+    for (int k = 2; used.count(stem); ++k) stem = converter::safeFileStem(object.name) + "_" + std::to_string(k);
     used.insert(stem);
-    stems[i] = stem;
+    stems.push_back(stem);
   }
-  // The buildings are converted side by side, one per worker, each on one thread: most of a small
-  // building's conversion keeps one core busy. What is kept of each is what the manifest, the
-  // report and the summary need, in the objects' order whatever the timing.
-  struct Building {
-    std::string name, hni, complement, error;
-    int exitCode = kOk;
-    glm::dvec3 originM{0.0};
-    converter::ConvertReport report;
-  };
-  std::vector<Building> buildings(count);
-  converter::ConvertOptions perBuilding = options;
+  return stems;
+}
+
+// What is kept of each building's conversion: what the manifest, the report and the summary need.
+struct ConvertedBuilding {
+  std::string name, hni, complement, error;
+  int exitCode = kOk;
+  glm::dvec3 originM{0.0};
+  converter::ConvertReport report;
+};
+
+// Converts and writes each object into the folder, side by side, one per worker, each on one
+// thread (most of a small building's conversion keeps one core busy); the results come in the
+// objects' order whatever the timing.
+std::vector<ConvertedBuilding> convertSideBySide(const ConvertCliOptions& o, std::vector<converter::Mesh>& objects,
+                                                 converter::ConvertOptions perBuilding, ProgressBar& bar) {
+  const std::size_t count = objects.size();
+  const std::vector<std::string> stems = fileStems(objects);
+  std::vector<ConvertedBuilding> buildings(count);
   perBuilding.solid.threads = 1;
   const unsigned cores = std::max(1u, std::thread::hardware_concurrency());
   const std::size_t workers = std::min<std::size_t>(count, o.threads > 0 ? static_cast<std::size_t>(o.threads) : cores);
   std::atomic<std::size_t> next{0}, finished{0};
   std::mutex progressMutex;
-  ProgressBar bar(!o.quiet, city.name);
   const auto work = [&] {
     for (std::size_t i; (i = next++) < count;) {
-      Building& b = buildings[i];
-      b.name = obj->objects[i].name;
-      auto conversion = converter::convertMesh(std::move(obj->objects[i]), perBuilding);
+      ConvertedBuilding& b = buildings[i];
+      b.name = objects[i].name;
+      auto conversion = converter::convertMesh(std::move(objects[i]), perBuilding);
       if (!conversion) {
         b.error = o.input + ": object '" + b.name + "': " + conversion.error().message;
         b.exitCode = kInvalid;
@@ -199,7 +200,8 @@ int run(const ConvertCliOptions& o) {
         b.hni = stems[i] + ".png";
         b.complement = hasComplement ? stems[i] + ".complement.obj" : "";
         if (Status s = converter::writeConversion(*conversion, (fs::path(o.output) / b.hni).string(),
-                                                  hasComplement ? (fs::path(o.output) / b.complement).string() : "", effortOf(o));
+                                                  hasComplement ? (fs::path(o.output) / b.complement).string() : "",
+                                                  effortOf(o));
             !s) {
           b.error = s.error().message;
           b.exitCode = kUnreadable;
@@ -215,9 +217,25 @@ int run(const ConvertCliOptions& o) {
   for (std::size_t w = 1; w < workers; ++w) threads.emplace_back(work);
   work();
   for (std::thread& t : threads) t.join();
+  return buildings;
+}
+
+// One HNI per object, a complementary mesh beside each that has one, and city.json.
+int convertCity(const ConvertCliOptions& o, converter::ObjContents& obj, const converter::ConvertOptions& options) {
+  if (!o.complement.empty())
+    return fail(
+        "--complement names one file; with -o FOLDER each building's complementary mesh is written into the folder",
+        kUsage);
+  std::error_code ec;
+  fs::create_directories(o.output, ec);
+  if (ec) return fail(o.output + ": cannot create folder (" + ec.message() + ")", kUnreadable);
+  converter::CityManifest city;
+  city.name = fs::path(o.input).stem().string();
+  ProgressBar bar(!o.quiet, city.name);
+  const std::vector<ConvertedBuilding> buildings = convertSideBySide(o, obj.objects, options, bar);
   bar.finish();
   nlohmann::json reports = nlohmann::json::array();
-  for (const Building& b : buildings) {
+  for (const ConvertedBuilding& b : buildings) {
     if (b.exitCode != kOk) return fail(b.error, b.exitCode);
     // Yaw 0: a turned building carries its yaw inside its HNI, which is in the world frame.
     city.buildings.push_back({b.name, b.hni, b.complement, b.originM, 0.0});
@@ -233,43 +251,70 @@ int run(const ConvertCliOptions& o) {
   return kOk;
 }
 
+int run(const ConvertCliOptions& o) {
+  {
+    std::ifstream probe(o.input, std::ios::binary);
+    std::error_code ec;
+    if (!probe || fs::is_directory(o.input, ec)) return fail(o.input + ": cannot open", kUnreadable);
+  }
+  auto options = convertOptionsOf(o);
+  if (!options) return fail(options.error().message, kUsage);
+  auto obj = converter::readObj(o.input, {o.zUp});
+  if (!obj) return fail(obj.error().message, kInvalid);
+  if (!o.quiet)
+    for (const std::string& w : obj->warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
+  const bool toFolder = fs::path(o.output).extension() != ".png";
+  return toFolder ? convertCity(o, *obj, *options) : convertOneBuilding(o, *obj, *options);
+}
+
 }  // namespace
 
 void addConvertCommand(CLI::App& app, int& exitCode) {
   auto o = std::make_shared<ConvertCliOptions>();
   CLI::App* cmd = app.add_subcommand("convert", "Convert an OBJ building (or a file of buildings) into HNI");
   cmd->add_option("input", o->input, "OBJ file (its MTL files beside it)")->required();
-  cmd->add_option("-o,--output", o->output,
-                  "Output HNI (.png: the whole file as one building), or a folder (one HNI per o/g object and city.json)")
+  cmd->add_option(
+         "-o,--output", o->output,
+         "Output HNI (.png: the whole file as one building), or a folder (one HNI per o/g object and city.json)")
       ->required();
-  cmd->add_option("--tolerance", o->toleranceM, "Planes closer than this merge; slopes within it become wedges (metres)")
-      ->default_val(0.01)->check(CLI::Range(0.001, 10.0));
+  cmd->add_option("--tolerance", o->toleranceM,
+                  "Planes closer than this merge; slopes within it become wedges (metres)")
+      ->default_val(0.01)
+      ->check(CLI::Range(0.001, 10.0));
   cmd->add_option("--angle-tolerance", o->angleDeg, "Faces within this many degrees of an axis count as axis-aligned")
-      ->default_val(1.0)->check(CLI::Range(0.0, 10.0));
+      ->default_val(1.0)
+      ->check(CLI::Range(0.0, 10.0));
   cmd->add_flag("--z-up", o->zUp, "The OBJ is z-up (turned to the y-up world frame)");
-  cmd->add_option("--complement", o->complement, "Write the faces the HNI does not show as OBJ + MTL (world coordinates)");
-  cmd->add_option("--report", o->report, "Write the conversion report as JSON (timings, grid, blocks, bytes, surface fractions)");
+  cmd->add_option("--complement", o->complement,
+                  "Write the faces the HNI does not show as OBJ + MTL (world coordinates)");
+  cmd->add_option("--report", o->report,
+                  "Write the conversion report as JSON (timings, grid, blocks, bytes, surface fractions)");
   cmd->add_flag("--quiet", o->quiet, "No progress bar, summary or warnings on stderr");
   cmd->add_flag("--no-auto-blocks", o->noAutoBlocks, "Do not search for repeated blocks");
   cmd->add_flag("--no-axis-order", o->noAxisOrder,
                 "Keep the grid's axes as they are instead of trying the order whose cells compress best");
-  cmd->add_flag("--no-wedges", o->noWedges, "Leave sloped faces to the complementary mesh instead of fitting wedge and pyramid cells");
+  cmd->add_flag("--no-wedges", o->noWedges,
+                "Leave sloped faces to the complementary mesh instead of fitting wedge and pyramid cells");
   cmd->add_flag("--no-align", o->noAlign,
                 "Convert a building turned about the vertical in the world frame instead of its own (most of it then "
                 "goes to the complementary mesh)");
   cmd->add_flag("--no-wings", o->noWings,
                 "Do not convert a wing turned against the rest of the building in a frame of its own (its walls then "
                 "go to the complementary mesh)");
-  cmd->add_option("--block", o->blocks, "Extract this box of cells as a block, x0,y0,z0:x1,y1,z1 in world metres (repeatable)");
-  cmd->add_option("--threads", o->threads,
-                  "Worker threads (0: all cores); with -o FOLDER the buildings are converted side by side, one per thread")
+  cmd->add_option("--block", o->blocks,
+                  "Extract this box of cells as a block, x0,y0,z0:x1,y1,z1 in world metres (repeatable)");
+  cmd->add_option(
+         "--threads", o->threads,
+         "Worker threads (0: all cores); with -o FOLDER the buildings are converted side by side, one per thread")
       ->check(CLI::NonNegativeNumber);
   cmd->add_option("--png-effort", o->pngEffort,
                   "smallest: Zopfli, about a second per 150 KB of pixels; small: zlib, milliseconds, 5-15 % larger")
       ->check(CLI::IsMember({"small", "smallest"}))
       ->capture_default_str();
-  cmd->footer("Examples:\n  nut convert samples/obj/highrise.obj -o highrise.png --complement highrise-rest.obj --report report.json\n"
-              "  nut convert samples/obj/street.obj -o street/        # one HNI per object + street/city.json");
+  cmd->footer(
+      "Examples:\n  nut convert samples/obj/highrise.obj -o highrise.png --complement highrise-rest.obj --report "
+      "report.json\n"
+      "  nut convert samples/obj/street.obj -o street/        # one HNI per object + street/city.json");
   cmd->callback([o, &exitCode] { exitCode = run(*o); });
 }
 
