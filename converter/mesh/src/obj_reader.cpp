@@ -66,7 +66,6 @@ std::uint8_t unitToByte(double v) {
   return static_cast<std::uint8_t>(std::lround(255.0 * std::min(v, 1.0)));
 }
 
-
 // Calls f(lineNumber, line) for every line of text.
 template <typename F>
 void forEachLine(const std::string& text, F&& f) {
@@ -129,14 +128,16 @@ void readMtl(const fs::path& path, MaterialTable& table, std::vector<std::string
       std::array<double, 3> kd{};
       std::string_view token;
       for (double& c : kd)
-        if (!t.next(token) || !parseDouble(token, c) || !std::isfinite(c)) return warn("Kd is not three numbers; ignored");
+        if (!t.next(token) || !parseDouble(token, c) || !std::isfinite(c))
+          return warn("Kd is not three numbers; ignored");
       material.r = unitToByte(kd[0]);
       material.g = unitToByte(kd[1]);
       material.b = unitToByte(kd[2]);
     } else if ((key == "d" || key == "Tr") && open) {
       std::string_view token;
       double v = 1;
-      if (!t.next(token) || !parseDouble(token, v) || !std::isfinite(v)) return warn("opacity is not a number; ignored");
+      if (!t.next(token) || !parseDouble(token, v) || !std::isfinite(v))
+        return warn("opacity is not a number; ignored");
       material.opacity = unitToByte(key == "d" ? v : 1.0 - v);
     }
   });
@@ -162,7 +163,8 @@ struct ObjectBuilder {
 }  // namespace
 
 WorldBox Mesh::bounds() const {
-  WorldBox box{glm::dvec3(std::numeric_limits<double>::infinity()), glm::dvec3(-std::numeric_limits<double>::infinity())};
+  WorldBox box{glm::dvec3(std::numeric_limits<double>::infinity()),
+               glm::dvec3(-std::numeric_limits<double>::infinity())};
   for (const auto& t : triangles)
     for (std::uint32_t v : t) {
       box.min = glm::min(box.min, positions[v]);
@@ -177,6 +179,47 @@ double Mesh::area() const {
     sum += 0.5 * glm::length(glm::cross(positions[t[1]] - positions[t[0]], positions[t[2]] - positions[t[0]]));
   return sum;
 }
+
+namespace {
+
+// The three coordinates of a `v` line (vertex `number`, counted from 1); an error otherwise.
+std::string readVertex(Tokens& t, std::size_t number, glm::dvec3& p) {
+  std::string_view token;
+  for (int i = 0; i < 3; ++i) {
+    if (!t.next(token))
+      return "vertex " + std::to_string(number) + " has " + std::to_string(i) + " coordinates, expected 3";
+    double v = 0;
+    // from_chars reads "nan" and "inf"; anything else unparsable is not a number at all.
+    if (!parseDouble(token, v))
+      return "vertex " + std::to_string(number) + " has a coordinate that is not a number: '" + std::string(token) +
+             "'";
+    if (!std::isfinite(v))
+      return "vertex " + std::to_string(number) + " has a non-finite coordinate '" + std::string(token) + "'";
+    p[i] = v;
+  }
+  return {};
+}
+
+// The distinct corners of an `f` line as indices of the `vertexCount` vertices read so far
+// (OBJ counts from 1, or back from the last with negative indices); an error otherwise.
+std::string readFaceCorners(Tokens& t, std::size_t vertexCount, std::vector<std::uint32_t>& corners) {
+  corners.clear();
+  std::string_view token;
+  while (t.next(token)) {
+    long long index = 0;
+    const std::string_view first = token.substr(0, token.find('/'));
+    if (!parseInt(first, index) || index == 0) return "face corner '" + std::string(token) + "' is not a vertex index";
+    const long long resolved = index < 0 ? static_cast<long long>(vertexCount) + index : index - 1;
+    if (resolved < 0 || resolved >= static_cast<long long>(vertexCount))
+      return "face refers to vertex " + std::to_string(index) + ", but only " + std::to_string(vertexCount) +
+             " vertices precede it";
+    const auto v = static_cast<std::uint32_t>(resolved);
+    if (std::find(corners.begin(), corners.end(), v) == corners.end()) corners.push_back(v);
+  }
+  return {};
+}
+
+}  // namespace
 
 Result<ObjContents> readObj(const std::string& path, const ObjReadOptions& options) {
   auto text = readTextFile(path);
@@ -211,46 +254,15 @@ Result<ObjContents> readObj(const std::string& path, const ObjReadOptions& optio
     const auto where = [&] { return path + ":" + std::to_string(line) + ": "; };
     if (key == "v") {
       glm::dvec3 p;
-      std::string_view token;
-      for (int i = 0; i < 3; ++i) {
-        if (!t.next(token)) {
-          error = where() + "vertex " + std::to_string(positions.size() + 1) + " has " + std::to_string(i) +
-                  " coordinates, expected 3";
-          return;
-        }
-        double v = 0;
-        if (!parseDouble(token, v)) {
-          // from_chars reads "nan" and "inf"; anything else unparsable is not a number at all.
-          error = where() + "vertex " + std::to_string(positions.size() + 1) + " has a coordinate that is not a number: '" +
-                  std::string(token) + "'";
-          return;
-        }
-        if (!std::isfinite(v)) {
-          error = where() + "vertex " + std::to_string(positions.size() + 1) + " has a non-finite coordinate '" +
-                  std::string(token) + "'";
-          return;
-        }
-        p[i] = v;
+      if (error = readVertex(t, positions.size() + 1, p); !error.empty()) {
+        error = where() + error;
+        return;
       }
       positions.push_back(options.zUp ? glm::dvec3(p.x, p.z, -p.y) : p);
     } else if (key == "f") {
-      corners.clear();
-      std::string_view token;
-      while (t.next(token)) {
-        long long index = 0;
-        const std::string_view first = token.substr(0, token.find('/'));
-        if (!parseInt(first, index) || index == 0) {
-          error = where() + "face corner '" + std::string(token) + "' is not a vertex index";
-          return;
-        }
-        const long long resolved = index < 0 ? static_cast<long long>(positions.size()) + index : index - 1;
-        if (resolved < 0 || resolved >= static_cast<long long>(positions.size())) {
-          error = where() + "face refers to vertex " + std::to_string(index) + ", but only " +
-                  std::to_string(positions.size()) + " vertices precede it";
-          return;
-        }
-        const auto v = static_cast<std::uint32_t>(resolved);
-        if (std::find(corners.begin(), corners.end(), v) == corners.end()) corners.push_back(v);
+      if (error = readFaceCorners(t, positions.size(), corners); !error.empty()) {
+        error = where() + error;
+        return;
       }
       if (corners.size() < 3) {
         ++droppedFaces;
@@ -260,7 +272,8 @@ Result<ObjContents> readObj(const std::string& path, const ObjReadOptions& optio
       ObjectBuilder& object = objects[current];
       const std::uint32_t a = object.vertex(corners[0], positions);
       for (std::size_t k = 1; k + 1 < corners.size(); ++k) {
-        object.mesh.triangles.push_back({a, object.vertex(corners[k], positions), object.vertex(corners[k + 1], positions)});
+        object.mesh.triangles.push_back(
+            {a, object.vertex(corners[k], positions), object.vertex(corners[k + 1], positions)});
         object.mesh.triangleMaterial.push_back(static_cast<std::uint16_t>(material));
       }
     } else if (key.size() == 1 && key.front() == splitKey) {
@@ -288,7 +301,8 @@ Result<ObjContents> readObj(const std::string& path, const ObjReadOptions& optio
   });
   if (!error.empty()) return Error{error};
   if (droppedFaces > 0)
-    out.warnings.push_back(path + ": " + std::to_string(droppedFaces) + " faces with fewer than 3 distinct vertices dropped");
+    out.warnings.push_back(path + ": " + std::to_string(droppedFaces) +
+                           " faces with fewer than 3 distinct vertices dropped");
 
   for (ObjectBuilder& object : objects) {
     if (object.mesh.triangles.empty()) continue;
@@ -296,7 +310,8 @@ Result<ObjContents> readObj(const std::string& path, const ObjReadOptions& optio
     object.mesh.materialNames = table.names;
     out.objects.push_back(std::move(object.mesh));
   }
-  if (out.objects.empty()) return Error{path + ": no faces (the file has " + std::to_string(positions.size()) + " vertices)"};
+  if (out.objects.empty())
+    return Error{path + ": no faces (the file has " + std::to_string(positions.size()) + " vertices)"};
   return out;
 }
 
