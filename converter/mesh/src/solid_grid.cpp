@@ -453,6 +453,157 @@ void Builder::buildBounds() {
   }
 }
 
+namespace {
+
+using Bounds = std::array<std::vector<double>, 3>;
+
+// Slopes closed into a grid's boundaries, and those left out.
+struct Closure {
+  Bounds bounds;
+  std::vector<std::size_t> accepted, rejected;
+  int offDiagonal = 0;  // columns (u cells) of accepted slopes that do not run corner to corner
+};
+
+// Closes a builder's slopes, largest first, into its boundaries (Builder::closeSlopes).
+class SlopeCloser {
+ public:
+  explicit SlopeCloser(const Builder& b)
+      : b_(b), initial_{b.bounds[0].size(), b.bounds[1].size(), b.bounds[2].size()}, order_(b.slopes.size()) {
+    std::iota(order_.begin(), order_.end(), std::size_t{0});
+    std::sort(order_.begin(), order_.end(),
+              [&](std::size_t x, std::size_t y) { return b.slopes[x].area > b.slopes[y].area; });
+  }
+
+  // Every slope closed in turn (with its crease points where `creases` and they fit), each kept
+  // only when its closure does not add too many boundaries.
+  Closure closeAll(bool creases) const {
+    Closure c;
+    c.bounds = b_.bounds;
+    for (std::size_t candidate : order_) {
+      const SlopePlane& plane = b_.slopes[candidate];
+      if (!plane.represented) continue;  // failed a previous attempt
+      if (plane.area < kMinSlopeShare * b_.stats.areaM2) {
+        c.rejected.push_back(candidate);  // a facet too small to pay for its boundaries
+        continue;
+      }
+      c.accepted.push_back(candidate);
+      auto trial = creases && !plane.creasePoints.empty() ? close(c, plane, true) : std::nullopt;
+      if (!trial) trial = close(c, plane, false);
+      if (!trial) {
+        c.accepted.pop_back();
+        c.rejected.push_back(candidate);
+        continue;
+      }
+      c.bounds = std::move(*trial);
+    }
+    c.offDiagonal = offDiagonalColumns(c);
+    return c;
+  }
+
+ private:
+  // The boundaries with one more slope (the last of c.accepted) closed, or nothing when that adds
+  // too many.
+  std::optional<Bounds> close(const Closure& c, const SlopePlane& plane, bool creases) const {
+    const double tol = b_.tol;
+    const dvec3& size = b_.size;
+    Bounds trial = c.bounds;
+    const int u = kU[plane.e], v = kV[plane.e];
+    insertBoundaries(trial[static_cast<std::size_t>(plane.e)], {plane.e0, plane.e1}, size[plane.e], tol);
+    insertBoundaries(trial[static_cast<std::size_t>(u)], {plane.uMin(), plane.uMax()}, size[u], tol);
+    insertBoundaries(trial[static_cast<std::size_t>(v)], {plane.vMin(), plane.vMax()}, size[v], tol);
+    // What a lone slope would add: one boundary per boundary it crosses, plus its ends.
+    std::size_t crossed = 4;
+    for (double x : trial[static_cast<std::size_t>(u)]) crossed += x > plane.uMin() + tol && x < plane.uMax() - tol;
+    for (double x : trial[static_cast<std::size_t>(v)]) crossed += x > plane.vMin() + tol && x < plane.vMax() - tol;
+    const std::size_t own = creases ? addCreasePoints(trial, plane) : 0;
+    const bool converged = closeCrossings(trial, c.accepted);
+    std::size_t growth = 0;
+    bool withinBudget = true;
+    for (std::size_t a = 0; a < 3; ++a) {
+      growth += trial[a].size() - c.bounds[a].size();
+      withinBudget = withinBudget && trial[a].size() <= initial_[a] + kMaxSlopeBoundariesPerAxis;
+    }
+    if (growth > 2 * crossed + 8 + own || !withinBudget || (own > 0 && !converged)) return std::nullopt;
+    return trial;
+  }
+
+  // Adds the plane's crease points, each on all three axes, and returns how many boundaries they
+  // added. One that would land near a boundary but not on it (within half a step: a wall's plane
+  // beside the eaves corner, another hip's step) is left out rather than make a sliver of cells;
+  // the boundary there crosses the crease already.
+  std::size_t addCreasePoints(Bounds& trial, const SlopePlane& plane) const {
+    const double tol = b_.tol;
+    std::size_t own = 0;
+    for (const dvec3& q : plane.creasePoints) {
+      bool clear = true;
+      for (int a = 0; a < 3 && clear; ++a) {
+        const auto& B = trial[static_cast<std::size_t>(a)];
+        const double boundary = B[static_cast<std::size_t>(nearestBoundary(B, q[a]))];
+        clear = snappedWithin(boundary, q[a], tol) || std::abs(boundary - q[a]) >= 0.5 * kCreaseMinStep * tol;
+      }
+      for (int a = 0; a < 3 && clear; ++a) {
+        const std::size_t before = trial[static_cast<std::size_t>(a)].size();
+        insertBoundaries(trial[static_cast<std::size_t>(a)], {q[a]}, b_.size[a], tol);
+        own += trial[static_cast<std::size_t>(a)].size() - before;
+      }
+    }
+    return own;
+  }
+
+  // Adds where each accepted slope crosses a boundary of the other axis of its cross-section,
+  // round after round, since each addition may cross another slope. Returns whether the rounds
+  // ended with nothing left to add.
+  bool closeCrossings(Bounds& trial, const std::vector<std::size_t>& accepted) const {
+    const double tol = b_.tol;
+    for (int round = 0; round < kSlopeRounds; ++round) {
+      Bounds added;
+      for (std::size_t id : accepted) {
+        const SlopePlane& sp = b_.slopes[id];
+        const int su = kU[sp.e], sv = kV[sp.e];
+        for (double bu : trial[static_cast<std::size_t>(su)])
+          if (bu > sp.uMin() + tol && bu < sp.uMax() - tol) added[static_cast<std::size_t>(sv)].push_back(sp.vAt(bu));
+        for (double bv : trial[static_cast<std::size_t>(sv)])
+          if (bv > sp.vMin() + tol && bv < sp.vMax() - tol) added[static_cast<std::size_t>(su)].push_back(sp.uAt(bv));
+      }
+      bool any = false;
+      for (int a = 0; a < 3; ++a) {
+        const std::size_t before = trial[static_cast<std::size_t>(a)].size();
+        insertBoundaries(trial[static_cast<std::size_t>(a)], std::move(added[static_cast<std::size_t>(a)]), b_.size[a],
+                         tol);
+        any = any || trial[static_cast<std::size_t>(a)].size() > before;
+      }
+      if (!any) return true;
+    }
+    return false;
+  }
+
+  // Columns of the accepted slopes whose ends are not within the tolerance of a pair of
+  // neighbouring boundaries (fitWedges fails them whole).
+  int offDiagonalColumns(const Closure& c) const {
+    const double tol = b_.tol;
+    int count = 0;
+    for (const std::size_t id : c.accepted) {
+      const SlopePlane& sp = b_.slopes[id];
+      const auto& U = c.bounds[static_cast<std::size_t>(kU[sp.e])];
+      const auto& V = c.bounds[static_cast<std::size_t>(kV[sp.e])];
+      for (int i = cellOf(U, sp.uMin() + tol); i <= cellOf(U, sp.uMax() - tol); ++i) {
+        const double va = sp.vAt(U[static_cast<std::size_t>(i)]), vb = sp.vAt(U[static_cast<std::size_t>(i + 1)]);
+        const int j = nearestBoundary(V, std::min(va, vb));
+        count += j + 1 >= static_cast<int>(V.size()) ||
+                 std::abs(V[static_cast<std::size_t>(j)] - std::min(va, vb)) > tol ||
+                 std::abs(V[static_cast<std::size_t>(j + 1)] - std::max(va, vb)) > tol;
+      }
+    }
+    return count;
+  }
+
+  const Builder& b_;
+  std::array<std::size_t, 3> initial_;  // boundaries per axis before any slope
+  std::vector<std::size_t> order_;      // slopes, largest first
+};
+
+}  // namespace
+
 // Adds, for each slope, its end lines and the boundaries where it crosses a boundary of the
 // other axis of its cross-section, until every accepted slope runs through cells corner to corner.
 // Slopes are taken largest first; one whose closure would add more boundaries than it crosses
@@ -470,120 +621,18 @@ void Builder::buildBounds() {
 // no slope rejected and no column off its diagonal that closing without them would not.
 void Builder::closeSlopes() {
   if (slopes.empty()) return;
-  const std::array<std::size_t, 3> initial{bounds[0].size(), bounds[1].size(), bounds[2].size()};
-  std::vector<std::size_t> order(slopes.size());
-  std::iota(order.begin(), order.end(), std::size_t{0});
-  std::sort(order.begin(), order.end(), [&](std::size_t x, std::size_t y) { return slopes[x].area > slopes[y].area; });
-  struct Closure {
-    std::array<std::vector<double>, 3> bounds;
-    std::vector<std::size_t> accepted, rejected;
-    int offDiagonal = 0;  // columns (u cells) of accepted slopes that do not run corner to corner
-  };
-  // The boundaries with one more slope closed, or nothing when that adds too many.
-  const auto close = [&](const Closure& c, const SlopePlane& plane,
-                         bool creases) -> std::optional<std::array<std::vector<double>, 3>> {
-    std::array<std::vector<double>, 3> trial = c.bounds;
-    const int u = kU[plane.e], v = kV[plane.e];
-    insertBoundaries(trial[static_cast<std::size_t>(plane.e)], {plane.e0, plane.e1}, size[plane.e], tol);
-    insertBoundaries(trial[static_cast<std::size_t>(u)], {plane.uMin(), plane.uMax()}, size[u], tol);
-    insertBoundaries(trial[static_cast<std::size_t>(v)], {plane.vMin(), plane.vMax()}, size[v], tol);
-    // What a lone slope would add: one boundary per boundary it crosses, plus its ends.
-    std::size_t crossed = 4;
-    for (double x : trial[static_cast<std::size_t>(u)]) crossed += x > plane.uMin() + tol && x < plane.uMax() - tol;
-    for (double x : trial[static_cast<std::size_t>(v)]) crossed += x > plane.vMin() + tol && x < plane.vMax() - tol;
-    // Crease points, each on all three axes. One that would land near a boundary but not on it
-    // (within half a step: a wall's plane beside the eaves corner, another hip's step) is left
-    // out rather than make a sliver of cells; the boundary there crosses the crease already.
-    std::size_t own = 0;
-    for (const dvec3& q : plane.creasePoints) {
-      bool clear = creases;
-      for (int a = 0; a < 3 && clear; ++a) {
-        const auto& B = trial[static_cast<std::size_t>(a)];
-        const double boundary = B[static_cast<std::size_t>(nearestBoundary(B, q[a]))];
-        clear = snappedWithin(boundary, q[a], tol) || std::abs(boundary - q[a]) >= 0.5 * kCreaseMinStep * tol;
-      }
-      for (int a = 0; a < 3 && clear; ++a) {
-        const std::size_t before = trial[static_cast<std::size_t>(a)].size();
-        insertBoundaries(trial[static_cast<std::size_t>(a)], {q[a]}, size[a], tol);
-        own += trial[static_cast<std::size_t>(a)].size() - before;
-      }
-    }
-    bool converged = false;
-    for (int round = 0; round < kSlopeRounds && !converged; ++round) {
-      std::array<std::vector<double>, 3> added;
-      for (std::size_t id : c.accepted) {
-        const SlopePlane& sp = slopes[id];
-        const int su = kU[sp.e], sv = kV[sp.e];
-        for (double bu : trial[static_cast<std::size_t>(su)])
-          if (bu > sp.uMin() + tol && bu < sp.uMax() - tol) added[static_cast<std::size_t>(sv)].push_back(sp.vAt(bu));
-        for (double bv : trial[static_cast<std::size_t>(sv)])
-          if (bv > sp.vMin() + tol && bv < sp.vMax() - tol) added[static_cast<std::size_t>(su)].push_back(sp.uAt(bv));
-      }
-      bool any = false;
-      for (int a = 0; a < 3; ++a) {
-        const std::size_t before = trial[static_cast<std::size_t>(a)].size();
-        insertBoundaries(trial[static_cast<std::size_t>(a)], std::move(added[static_cast<std::size_t>(a)]), size[a],
-                         tol);
-        any = any || trial[static_cast<std::size_t>(a)].size() > before;
-      }
-      converged = !any;
-    }
-    std::size_t growth = 0;
-    bool withinBudget = true;
-    for (int a = 0; a < 3; ++a) {
-      growth += trial[static_cast<std::size_t>(a)].size() - c.bounds[static_cast<std::size_t>(a)].size();
-      withinBudget = withinBudget && trial[static_cast<std::size_t>(a)].size() <=
-                                         initial[static_cast<std::size_t>(a)] + kMaxSlopeBoundariesPerAxis;
-    }
-    if (growth > 2 * crossed + 8 + own || !withinBudget || (own > 0 && !converged)) return std::nullopt;
-    return trial;
-  };
-  const auto closeAll = [&](bool creases) {
-    Closure c;
-    c.bounds = bounds;
-    for (std::size_t candidate : order) {
-      const SlopePlane& plane = slopes[candidate];
-      if (!plane.represented) continue;  // failed a previous attempt
-      if (plane.area < kMinSlopeShare * stats.areaM2) {
-        c.rejected.push_back(candidate);  // a facet too small to pay for its boundaries
-        continue;
-      }
-      c.accepted.push_back(candidate);
-      auto trial = creases && !plane.creasePoints.empty() ? close(c, plane, true) : std::nullopt;
-      if (!trial) trial = close(c, plane, false);
-      if (!trial) {
-        c.accepted.pop_back();
-        c.rejected.push_back(candidate);
-        continue;
-      }
-      c.bounds = std::move(*trial);
-    }
-    for (const std::size_t id : c.accepted) {
-      const SlopePlane& sp = slopes[id];
-      const auto& U = c.bounds[static_cast<std::size_t>(kU[sp.e])];
-      const auto& V = c.bounds[static_cast<std::size_t>(kV[sp.e])];
-      for (int i = cellOf(U, sp.uMin() + tol); i <= cellOf(U, sp.uMax() - tol); ++i) {
-        const double va = sp.vAt(U[static_cast<std::size_t>(i)]), vb = sp.vAt(U[static_cast<std::size_t>(i + 1)]);
-        const int j = nearestBoundary(V, std::min(va, vb));
-        c.offDiagonal += j + 1 >= static_cast<int>(V.size()) ||
-                         std::abs(V[static_cast<std::size_t>(j)] - std::min(va, vb)) > tol ||
-                         std::abs(V[static_cast<std::size_t>(j + 1)] - std::max(va, vb)) > tol;
-      }
-    }
-    return c;
-  };
-  Closure chosen = closeAll(false);
+  const SlopeCloser closer(*this);
+  Closure chosen = closer.closeAll(false);
   if (std::any_of(slopes.begin(), slopes.end(),
                   [](const SlopePlane& sp) { return sp.represented && !sp.creasePoints.empty(); })) {
-    Closure creased = closeAll(true);
+    Closure creased = closer.closeAll(true);
     if (creased.rejected.size() <= chosen.rejected.size() && creased.offDiagonal <= chosen.offDiagonal)
       chosen = std::move(creased);
   }
   for (const std::size_t id : chosen.rejected) slopes[id].represented = false;
+  for (std::size_t a = 0; a < 3; ++a)
+    stats.slopeBoundaries += static_cast<long long>(chosen.bounds[a].size() - bounds[a].size());
   bounds = std::move(chosen.bounds);
-  for (int a = 0; a < 3; ++a)
-    stats.slopeBoundaries +=
-        static_cast<long long>(bounds[static_cast<std::size_t>(a)].size() - initial[static_cast<std::size_t>(a)]);
 }
 
 }  // namespace solid
