@@ -24,25 +24,13 @@ struct CompareOptions {
 
 int run(const CompareOptions& o) {
   auto a = readPng(o.a);
-  if (!a) {
-    std::fprintf(stderr, "error: %s\n", a.error().message.c_str());
-    return kUnreadable;
-  }
+  if (!a) return fail(a.error().message, kUnreadable);
   auto b = readPng(o.b);
-  if (!b) {
-    std::fprintf(stderr, "error: %s\n", b.error().message.c_str());
-    return kUnreadable;
-  }
+  if (!b) return fail(b.error().message, kUnreadable);
   auto d = meshref::compareImages(a->image, b->image, o.threshold);
-  if (!d) {
-    std::fprintf(stderr, "error: %s\n", d.error().message.c_str());
-    return kInvalid;
-  }
+  if (!d) return fail(d.error().message, kInvalid);
   if (!o.diff.empty())
-    if (Status s = writePng(o.diff, d->diff); !s) {
-      std::fprintf(stderr, "error: %s\n", s.error().message.c_str());
-      return kUnreadable;
-    }
+    if (Status s = writePng(o.diff, d->diff); !s) return fail(s.error().message, kUnreadable);
   const bool identical = std::isinf(d->psnr);
   if (o.json) {
     nlohmann::json j = {{"a", o.a},
@@ -76,12 +64,14 @@ int run(const CompareOptions& o) {
 
 void addCompareCommand(CLI::App& app, int& exitCode) {
   auto o = std::make_shared<CompareOptions>();
-  CLI::App* cmd = app.add_subcommand("compare", "Compare two images of the same size (e.g. an HNI render and a mesh render)");
+  CLI::App* cmd =
+      app.add_subcommand("compare", "Compare two images of the same size (e.g. an HNI render and a mesh render)");
   cmd->add_option("a", o->a, "First image (PNG)")->required();
   cmd->add_option("b", o->b, "Second image (PNG)")->required();
   cmd->add_option("--diff", o->diff, "Write a difference picture (PNG), see below");
   cmd->add_option("--threshold", o->threshold, "A pixel differs when some channel differs by more than this (0..255)")
-      ->default_val(8)->check(CLI::Range(0, 255));
+      ->default_val(8)
+      ->check(CLI::Range(0, 255));
   cmd->add_flag("--json", o->json, "Print the numbers as JSON");
   cmd->footer(
       "Numbers (over R, G, B on the 0..255 scale; alpha is ignored):\n"
@@ -89,7 +79,8 @@ void addCompareCommand(CLI::App& app, int& exitCode) {
       "  psnr           20 log10(255 / rms) dB; \"inf\" when the images are identical (JSON: null)\n"
       "  max difference the largest channel difference of any pixel\n"
       "  differing      pixels whose largest channel difference exceeds --threshold, and their share in %\n"
-      "JSON keys: a, b, width, height, rms, psnr, max_difference, pixels, differing, differing_pct, threshold[, diff].\n\n"
+      "JSON keys: a, b, width, height, rms, psnr, max_difference, pixels, differing, differing_pct, threshold[, "
+      "diff].\n\n"
       "Diff picture: equal pixels show A in faded grey; pixels that differ by 1..threshold are blue, by more\n"
       "than the threshold red (both brighter as the difference grows; red is full from 64 up).\n"
       "The exit code is 0 whenever the comparison ran; differences are reported, not failed.\n\n"

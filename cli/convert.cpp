@@ -103,11 +103,6 @@ void printSummary(const converter::ConvertReport& r, const std::string& output) 
                r.hni.width, r.hni.height, r.hni.bytesRaw, r.pngBytes, r.seconds());
 }
 
-int fail(const std::string& message, int code) {
-  std::fprintf(stderr, "error: %s\n", message.c_str());
-  return code;
-}
-
 Result<converter::ConvertOptions> convertOptionsOf(const ConvertCliOptions& o) {
   converter::ConvertOptions options;
   options.solid.toleranceM = o.toleranceM;

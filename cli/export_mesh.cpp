@@ -25,24 +25,12 @@ struct ExportMeshOptions {
 
 int run(const ExportMeshOptions& o) {
   auto png = readPng(o.input);
-  if (!png) {
-    std::fprintf(stderr, "error: %s\n", png.error().message.c_str());
-    return kUnreadable;
-  }
+  if (!png) return fail(png.error().message, kUnreadable);
   auto hierarchy = decode(png->image);  // validates first
-  if (!hierarchy) {
-    std::fprintf(stderr, "error: %s: invalid HNI: %s\n", o.input.c_str(), hierarchy.error().message.c_str());
-    return kInvalid;
-  }
+  if (!hierarchy) return fail(o.input + ": invalid HNI: " + hierarchy.error().message, kInvalid);
   auto mesh = exportMesh(*hierarchy, png->text.originM, o.mesh);
-  if (!mesh) {
-    std::fprintf(stderr, "error: %s: %s\n", o.input.c_str(), mesh.error().message.c_str());
-    return kInvalid;
-  }
-  if (Status s = writeObj(o.output, *mesh, hierarchy->materials); !s) {
-    std::fprintf(stderr, "error: %s\n", s.error().message.c_str());
-    return kUnreadable;
-  }
+  if (!mesh) return fail(o.input + ": " + mesh.error().message, kInvalid);
+  if (Status s = writeObj(o.output, *mesh, hierarchy->materials); !s) return fail(s.error().message, kUnreadable);
   std::vector<bool> used(hierarchy->materials.size(), false);
   for (std::uint16_t m : mesh->triangleMaterial) used[m] = true;
   std::fprintf(stderr, "export-mesh: wrote %s (%zu triangles, %zu vertices, %zu materials used, tolerance %g m)\n",

@@ -42,7 +42,8 @@ std::vector<BlockLine> blockLines(const Image& image) {
     BlockLine line{b, h.cells, h.metaPixels, h.sizeUnits, 0, at.u == file.root.u && at.v == file.root.v};
     for (int z = 0; z < h.cells.z; ++z)
       for (int y = 0; y < h.cells.y; ++y)
-        for (int x = 0; x < h.cells.x; ++x) line.redirectionCells += view.cell(h, {x, y, z}).g == format::kCellRedirection;
+        for (int x = 0; x < h.cells.x; ++x)
+          line.redirectionCells += view.cell(h, {x, y, z}).g == format::kCellRedirection;
     lines.push_back(line);
   }
   return lines;
@@ -96,17 +97,18 @@ void printText(const InfoOptions& o, const PngFile& png, const HniStats& s) {
   if (o.blocks) {
     std::printf("  block    cells (x y z)    size (m)                    metadata px (x y z)  redirection cells\n");
     for (const BlockLine& b : blockLines(png.image))
-      std::printf("  %5d%s %4d %4d %4d   %9.3f %9.3f %9.3f   %4d %4d %4d   %lld\n", b.id, b.root ? "*" : " ", b.cells.x, b.cells.y,
-                  b.cells.z, b.sizeUnits.x / 1000.0, b.sizeUnits.y / 1000.0, b.sizeUnits.z / 1000.0, b.metaPixels.x, b.metaPixels.y,
-                  b.metaPixels.z, b.redirectionCells);
+      std::printf("  %5d%s %4d %4d %4d   %9.3f %9.3f %9.3f   %4d %4d %4d   %lld\n", b.id, b.root ? "*" : " ", b.cells.x,
+                  b.cells.y, b.cells.z, b.sizeUnits.x / 1000.0, b.sizeUnits.y / 1000.0, b.sizeUnits.z / 1000.0,
+                  b.metaPixels.x, b.metaPixels.y, b.metaPixels.z, b.redirectionCells);
     std::printf("  (* the root)\n");
   }
   if (o.bytes) {
     long long total = 0;
     const std::vector<KindCost> costs = kindCosts(png.image, total);
-    std::printf("  PNG bytes by record (pixels only, --png-effort smallest: %lld B; the file adds %lld B of chunks):\n", total,
-                static_cast<long long>(png.fileBytes) - total);
-    for (const KindCost& c : costs) std::printf("    %-20s %8lld px  %6lld B\n", pixelKindName(c.kind), c.pixels, c.pngBytes);
+    std::printf("  PNG bytes by record (pixels only, --png-effort smallest: %lld B; the file adds %lld B of chunks):\n",
+                total, static_cast<long long>(png.fileBytes) - total);
+    for (const KindCost& c : costs)
+      std::printf("    %-20s %8lld px  %6lld B\n", pixelKindName(c.kind), c.pixels, c.pngBytes);
   }
 }
 
@@ -144,7 +146,8 @@ void printJson(const InfoOptions& o, const PngFile& png, const HniStats& s) {
   if (o.bytes) {
     long long total = 0;
     nlohmann::json kinds = nlohmann::json::object();
-    for (const KindCost& c : kindCosts(png.image, total)) kinds[pixelKindName(c.kind)] = {{"pixels", c.pixels}, {"png_bytes", c.pngBytes}};
+    for (const KindCost& c : kindCosts(png.image, total))
+      kinds[pixelKindName(c.kind)] = {{"pixels", c.pixels}, {"png_bytes", c.pngBytes}};
     j["png_bytes_by_record"] = {{"pixels_png_bytes", total}, {"kinds", kinds}};
   }
   std::printf("%s\n", j.dump(2).c_str());
@@ -156,23 +159,25 @@ void addInfoCommand(CLI::App& app, int& exitCode) {
   auto options = std::make_shared<InfoOptions>();
   CLI::App* cmd = app.add_subcommand("info", "Print what an HNI holds: blocks, cells, sizes, waste, DAG depth");
   cmd->add_option("file", options->path, "HNI image (PNG)")->required();
-  cmd->add_flag("--json", options->json, "Print JSON (keys: blocks, cells, redirections, materials, width, height, "
-                                         "bytes_raw, bytes_png, waste_pct, dag_depth, ...)");
-  cmd->add_flag("--blocks", options->blocks, "Also list every block: cells and metadata pixels per axis, size, redirection cells");
-  cmd->add_flag("--bytes", options->bytes,
-                "Also measure what each kind of record costs in the PNG (the file re-encoded with that kind's pixels zero; "
-                "a few seconds)");
-  cmd->footer("Examples:\n  nut info samples/hni/building.png --json\n  nut info samples/hni/building.png --blocks --bytes");
+  cmd->add_flag("--json", options->json,
+                "Print JSON (keys: blocks, cells, redirections, materials, width, height, "
+                "bytes_raw, bytes_png, waste_pct, dag_depth, ...)");
+  cmd->add_flag("--blocks", options->blocks,
+                "Also list every block: cells and metadata pixels per axis, size, redirection cells");
+  cmd->add_flag(
+      "--bytes", options->bytes,
+      "Also measure what each kind of record costs in the PNG (the file re-encoded with that kind's pixels zero; "
+      "a few seconds)");
+  cmd->footer(
+      "Examples:\n  nut info samples/hni/building.png --json\n  nut info samples/hni/building.png --blocks --bytes");
   cmd->callback([options, &exitCode] {
     auto png = readPng(options->path);
     if (!png) {
-      std::fprintf(stderr, "error: %s\n", png.error().message.c_str());
-      exitCode = kUnreadable;
+      exitCode = fail(png.error().message, kUnreadable);
       return;
     }
     if (Status s = validate(png->image); !s) {
-      std::fprintf(stderr, "error: %s: invalid HNI: %s\n", options->path.c_str(), s.error().message.c_str());
-      exitCode = kInvalid;
+      exitCode = fail(options->path + ": invalid HNI: " + s.error().message, kInvalid);
       return;
     }
     const HniStats stats = computeStats(png->image);

@@ -4,11 +4,17 @@
 
 #include "commands.hpp"
 
+int nut::cli::fail(const std::string& message, int code) {
+  std::fprintf(stderr, "error: %s\n", message.c_str());
+  return code;
+}
+
 int main(int argc, char** argv) {
   CLI::App app{"nut: Non-Uniform Texture toolkit (HNI images of buildings)"};
   app.require_subcommand(1);
-  app.footer("Examples:\n  nut info samples/hni/building.png --json\n  nut validate samples/hni/facade.png\n\n"
-             "Run `nut <command> --help` for the options of a command.");
+  app.footer(
+      "Examples:\n  nut info samples/hni/building.png --json\n  nut validate samples/hni/facade.png\n\n"
+      "Run `nut <command> --help` for the options of a command.");
   int exitCode = nut::cli::kOk;
   nut::cli::addInfoCommand(app, exitCode);
   nut::cli::addValidateCommand(app, exitCode);
@@ -26,11 +32,9 @@ int main(int argc, char** argv) {
     std::fputs(app.help("", CLI::AppFormatMode::All).c_str(), stdout);
     return 0;
   } catch (const CLI::ParseError& e) {
-    std::fprintf(stderr, "error: %s (see nut --help)\n", e.what());
-    return nut::cli::kUsage;
+    return nut::cli::fail(std::string(e.what()) + " (see nut --help)", nut::cli::kUsage);
   } catch (const std::exception& e) {
-    std::fprintf(stderr, "error: %s\n", e.what());
-    return nut::cli::kUnreadable;
+    return nut::cli::fail(e.what(), nut::cli::kUnreadable);
   }
   return exitCode;
 }

@@ -31,91 +31,91 @@ struct RenderOptions {
   int threads = 0;
 };
 
-int run(RenderOptions o) {
+// The scene through the GLSL ray caster; `frame` and `stats` are filled. Returns an exit code.
+int renderWithGl(const RenderOptions& o, const RenderScene& scene, const Camera& camera, const RayCastOptions& options,
+                 RenderOutput& frame, RenderStats& stats) {
+  auto gl = o.gl.open();
+  if (!gl) return fail("GL: " + gl.error().message, kUnreadable);
+  std::fprintf(stderr, "render: GL %s: %s\n", o.gl.context.c_str(), (*gl)->context().description().c_str());
+  // One shared image per file: the buildings that name it are instances of one atlas entry.
+  std::vector<std::shared_ptr<const Image>> images;
+  for (const PngFile& file : scene.files) images.push_back(std::make_shared<const Image>(file.image));
+  Status added = Ok{};
+  for (std::size_t i = 0; i < scene.hnis.size(); ++i)
+    if (added) added = (*gl)->addHni(images[scene.hniFiles[i]], scene.hnis[i].originM, scene.hnis[i].worldFromRoot);
+  for (const meshref::TriangleMesh& mesh : scene.meshes)
+    if (added) added = (*gl)->addMesh(toMeshData(mesh));
+  if (!added) return fail(added.error().message, kInvalid);
+  const auto start = std::chrono::steady_clock::now();
+  if (Status drawn = (*gl)->draw(camera, options); !drawn) return fail("GL: " + drawn.error().message, kUnreadable);
+  stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  stats.raysPerSecond = static_cast<double>(camera.width) * camera.height / stats.seconds;
+  viewer::GlFrame gpu = (*gl)->read(camera);
+  frame.colour = std::move(gpu.colour);
+  frame.distanceM = std::move(gpu.distanceM);
+  return kOk;
+}
+
+// The scene through the CPU ray caster (and Embree for its meshes). Returns an exit code.
+int renderOnCpu(const RenderOptions& o, const RenderScene& scene, const Camera& camera, const RayCastOptions& options,
+                RenderOutput& frame, RenderStats& stats) {
+  if (scene.hnis.size() == 1 && scene.meshes.empty()) {
+    // One HNI alone keeps its translucent cells' tint over the background, which a scene of
+    // several objects does not (meshref/scene_render.hpp).
+    const meshref::PlacedHni& hni = scene.hnis.front();
+    frame = renderHni(HniRayCaster(*hni.image, hni.originM, hni.worldFromRoot), camera, options, o.threads, &stats);
+    return kOk;
+  }
+  auto renderer = meshref::SceneRenderer::create(scene.hnis, scene.meshPointers());
+  if (!renderer) return fail(renderer.error().message, kUnreadable);
+  frame = renderer->render(camera, options, o.threads, &stats);
+  return kOk;
+}
+
+// --stats: the timing and, on the CPU, the per-ray counts (the GL caster keeps none).
+Status writeStats(const RenderOptions& o, const Camera& camera, const RenderStats& stats) {
+  nlohmann::json j = {{"seconds", stats.seconds},
+                      {"rays_per_second", stats.raysPerSecond},
+                      {"iterations_mean", stats.iterationsMean},
+                      {"iterations_max", stats.iterationsMax},
+                      {"capped_pct", stats.cappedPct},
+                      {"threads", stats.threads},
+                      {"width", camera.width},
+                      {"height", camera.height},
+                      {"lookup", o.lookup},
+                      {"lod_px", o.lodPx},
+                      {"backend", o.backend}};
+  if (o.backend == "gl")
+    for (const char* key : {"iterations_mean", "iterations_max", "capped_pct", "threads"}) j.erase(key);
+  return writeTextFile(o.stats, j.dump(2) + "\n");
+}
+
+int run(const RenderOptions& o) {
   RenderScene scene;
   if (int code = loadRenderScene(o.input, o.meshes, scene); code != kOk) return code;
   // The default camera fits the solid content and the meshes, as `nut render-mesh` fits a mesh.
   auto camera = o.camera.resolve(scene.bounds);
-  if (!camera) {
-    std::fprintf(stderr, "error: %s\n", camera.error().message.c_str());
-    return kUsage;
-  }
+  if (!camera) return fail(camera.error().message, kUsage);
   RayCastOptions options;
   options.lookup = o.lookup == "exact" ? Lookup::Exact : Lookup::Heuristic;
   options.lodPx = o.lodPx;
   options.maxIterations = o.maxIterations;
-  RenderStats stats;
   std::fprintf(stderr, "render: %s (%zu HNI%s, %zu mesh%s), %dx%d, %s lookup\n", o.input.c_str(), scene.hnis.size(),
-               scene.hnis.size() == 1 ? "" : "s", scene.meshes.size(), scene.meshes.size() == 1 ? "" : "es", camera->width,
-               camera->height, o.lookup.c_str());
+               scene.hnis.size() == 1 ? "" : "s", scene.meshes.size(), scene.meshes.size() == 1 ? "" : "es",
+               camera->width, camera->height, o.lookup.c_str());
   RenderOutput frame;
-  if (o.backend == "gl") {
-    auto gl = o.gl.open();
-    if (!gl) {
-      std::fprintf(stderr, "error: GL: %s\n", gl.error().message.c_str());
-      return kUnreadable;
-    }
-    std::fprintf(stderr, "render: GL %s: %s\n", o.gl.context.c_str(), (*gl)->context().description().c_str());
-    // One shared image per file: the buildings that name it are instances of one atlas entry.
-    std::vector<std::shared_ptr<const Image>> images;
-    for (const PngFile& file : scene.files) images.push_back(std::make_shared<const Image>(file.image));
-    Status added = Ok{};
-    for (std::size_t i = 0; i < scene.hnis.size(); ++i)
-      if (added) added = (*gl)->addHni(images[scene.hniFiles[i]], scene.hnis[i].originM, scene.hnis[i].worldFromRoot);
-    for (const meshref::TriangleMesh& mesh : scene.meshes)
-      if (added) added = (*gl)->addMesh(toMeshData(mesh));
-    if (!added) {
-      std::fprintf(stderr, "error: %s\n", added.error().message.c_str());
-      return kInvalid;
-    }
-    const auto start = std::chrono::steady_clock::now();
-    if (Status drawn = (*gl)->draw(*camera, options); !drawn) {
-      std::fprintf(stderr, "error: GL: %s\n", drawn.error().message.c_str());
-      return kUnreadable;
-    }
-    stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    stats.raysPerSecond = static_cast<double>(camera->width) * camera->height / stats.seconds;
-    viewer::GlFrame gpu = (*gl)->read(*camera);
-    frame.colour = std::move(gpu.colour);
-    frame.distanceM = std::move(gpu.distanceM);
-  } else if (scene.hnis.size() == 1 && scene.meshes.empty()) {
-    // One HNI alone keeps its translucent cells' tint over the background, which a scene of
-    // several objects does not (meshref/scene_render.hpp).
-    const meshref::PlacedHni& hni = scene.hnis.front();
-    frame = renderHni(HniRayCaster(*hni.image, hni.originM, hni.worldFromRoot), *camera, options, o.threads, &stats);
-  } else {
-    auto renderer = meshref::SceneRenderer::create(scene.hnis, scene.meshPointers());
-    if (!renderer) {
-      std::fprintf(stderr, "error: %s\n", renderer.error().message.c_str());
-      return kUnreadable;
-    }
-    frame = renderer->render(*camera, options, o.threads, &stats);
-  }
-  if (Status s = writePng(o.output, frame.colour); !s) {
-    std::fprintf(stderr, "error: %s\n", s.error().message.c_str());
-    return kUnreadable;
-  }
+  RenderStats stats;
+  const bool gl = o.backend == "gl";
+  const int code = gl ? renderWithGl(o, scene, *camera, options, frame, stats)
+                      : renderOnCpu(o, scene, *camera, options, frame, stats);
+  if (code != kOk) return code;
+  if (Status s = writePng(o.output, frame.colour); !s) return fail(s.error().message, kUnreadable);
   if (!o.depth.empty())
-    if (Status s = writePfm(o.depth, camera->width, camera->height, frame.distanceM); !s) {
-      std::fprintf(stderr, "error: %s\n", s.error().message.c_str());
-      return kUnreadable;
-    }
-  if (!o.stats.empty()) {
-    nlohmann::json j = {{"seconds", stats.seconds},           {"rays_per_second", stats.raysPerSecond},
-                        {"iterations_mean", stats.iterationsMean}, {"iterations_max", stats.iterationsMax},
-                        {"capped_pct", stats.cappedPct},      {"threads", stats.threads},
-                        {"width", camera->width},             {"height", camera->height},
-                        {"lookup", o.lookup},                 {"lod_px", o.lodPx},
-                        {"backend", o.backend}};
-    // The GL caster keeps no per-ray counts.
-    if (o.backend == "gl")
-      for (const char* key : {"iterations_mean", "iterations_max", "capped_pct", "threads"}) j.erase(key);
-    if (Status s = writeTextFile(o.stats, j.dump(2) + "\n"); !s) {
-      std::fprintf(stderr, "error: %s\n", s.error().message.c_str());
-      return kUnreadable;
-    }
-  }
-  if (o.backend == "gl")
+    if (Status s = writePfm(o.depth, camera->width, camera->height, frame.distanceM); !s)
+      return fail(s.error().message, kUnreadable);
+  if (!o.stats.empty())
+    if (Status s = writeStats(o, *camera, stats); !s) return fail(s.error().message, kUnreadable);
+  if (gl)
     std::fprintf(stderr, "render: wrote %s (%.3f s, %.2f Mrays/s)\n", o.output.c_str(), stats.seconds,
                  stats.raysPerSecond / 1e6);
   else
@@ -129,31 +129,39 @@ int run(RenderOptions o) {
 void addRenderCommand(CLI::App& app, int& exitCode) {
   auto o = std::make_shared<RenderOptions>();
   CLI::App* cmd = app.add_subcommand("render", "Ray-cast an HNI, or every building of a city manifest, into an image");
-  cmd->add_option("input", o->input, "HNI image (PNG), or a city manifest (city.json: every building with its complementary mesh)")->required();
+  cmd->add_option("input", o->input,
+                  "HNI image (PNG), or a city manifest (city.json: every building with its complementary mesh)")
+      ->required();
   cmd->add_option("-o,--output", o->output, "Output image (PNG)")->required();
   o->camera.addTo(*cmd);
   cmd->add_option("--backend", o->backend, "Renderer: cpu (the reference ray caster) or gl (the GLSL ray caster)")
       ->check(CLI::IsMember({"cpu", "gl"}))
       ->default_val("cpu");
   o->gl.addTo(*cmd);
-  cmd->add_option("--mesh", o->meshes, "A mesh (OBJ; a complementary mesh) drawn with the HNI in one image, nearest surface in front (repeatable)");
-  cmd->add_option("--lod-px", o->lodPx, "Use visual summaries for redirection cells smaller than this many pixels (0: full detail)")
+  cmd->add_option(
+      "--mesh", o->meshes,
+      "A mesh (OBJ; a complementary mesh) drawn with the HNI in one image, nearest surface in front (repeatable)");
+  cmd->add_option("--lod-px", o->lodPx,
+                  "Use visual summaries for redirection cells smaller than this many pixels (0: full detail)")
       ->check(CLI::NonNegativeNumber);
   cmd->add_option("--max-iter", o->maxIterations, "Iteration cap per ray (capped rays are magenta)")
-      ->default_val(512)->check(CLI::Range(1, 1000000));
+      ->default_val(512)
+      ->check(CLI::Range(1, 1000000));
   // Exact by default on both back-ends: the heuristic places a sub-block up to 2 mm off its
   // neighbours, which leaves single-pixel holes along block seams, and the fetch it saves buys no
   // measurable time on a CPU or on llvmpipe (render_bench, gl_bench; docs/RENDERING.md).
-  cmd->add_option("--lookup", o->lookup, "Metadata lookup: exact, or the paper's one-fetch heuristic (boundaries within 2 mm)")
+  cmd->add_option("--lookup", o->lookup,
+                  "Metadata lookup: exact, or the paper's one-fetch heuristic (boundaries within 2 mm)")
       ->check(CLI::IsMember({"heuristic", "exact"}))
       ->default_val("exact");
   cmd->add_option("--depth", o->depth, "Also write the distance along each ray (metres, +inf for misses) as PFM");
   cmd->add_option("--stats", o->stats, "Write timing and iteration statistics as JSON");
   cmd->add_option("--threads", o->threads, "Worker threads (0: all cores)")->check(CLI::NonNegativeNumber);
-  cmd->footer("Examples:\n  nut render samples/hni/building.png -o building.png --size 1280x720 --stats stats.json\n"
-              "  nut render samples/hni/building.png -o building-gl.png --backend gl --gl egl\n"
-              "  nut render carpark.png -o carpark-render.png --mesh carpark-rest.obj\n"
-              "  nut render street/city.json -o street.png        # after nut convert street.obj -o street/");
+  cmd->footer(
+      "Examples:\n  nut render samples/hni/building.png -o building.png --size 1280x720 --stats stats.json\n"
+      "  nut render samples/hni/building.png -o building-gl.png --backend gl --gl egl\n"
+      "  nut render carpark.png -o carpark-render.png --mesh carpark-rest.obj\n"
+      "  nut render street/city.json -o street.png        # after nut convert street.obj -o street/");
   cmd->callback([o, &exitCode] { exitCode = run(*o); });
 }
 

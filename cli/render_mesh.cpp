@@ -31,47 +31,27 @@ struct RenderMeshOptions {
 
 int writeOutputs(const RenderMeshOptions& o, const Camera& camera, const Image& colour,
                  const std::vector<float>& distanceM, const nlohmann::json& stats) {
-  if (Status s = writePng(o.output, colour); !s) {
-    std::fprintf(stderr, "error: %s\n", s.error().message.c_str());
-    return kUnreadable;
-  }
+  if (Status s = writePng(o.output, colour); !s) return fail(s.error().message, kUnreadable);
   if (!o.depth.empty())
-    if (Status s = writePfm(o.depth, camera.width, camera.height, distanceM); !s) {
-      std::fprintf(stderr, "error: %s\n", s.error().message.c_str());
-      return kUnreadable;
-    }
+    if (Status s = writePfm(o.depth, camera.width, camera.height, distanceM); !s)
+      return fail(s.error().message, kUnreadable);
   if (!o.stats.empty())
-    if (Status s = writeTextFile(o.stats, stats.dump(2) + "\n"); !s) {
-      std::fprintf(stderr, "error: %s\n", s.error().message.c_str());
-      return kUnreadable;
-    }
+    if (Status s = writeTextFile(o.stats, stats.dump(2) + "\n"); !s) return fail(s.error().message, kUnreadable);
   return kOk;
 }
 
 // Rasterises the mesh with OpenGL: the camera is fitted to the same bounds as Embree's.
 int runGl(const RenderMeshOptions& o, const meshref::TriangleMesh& mesh) {
   auto camera = o.camera.resolve(mesh.bounds);
-  if (!camera) {
-    std::fprintf(stderr, "error: %s\n", camera.error().message.c_str());
-    return kUsage;
-  }
+  if (!camera) return fail(camera.error().message, kUsage);
   auto gl = o.gl.open();
-  if (!gl) {
-    std::fprintf(stderr, "error: GL: %s\n", gl.error().message.c_str());
-    return kUnreadable;
-  }
-  if (Status s = (*gl)->addMesh(toMeshData(mesh)); !s) {
-    std::fprintf(stderr, "error: %s: %s\n", o.input.c_str(), s.error().message.c_str());
-    return kInvalid;
-  }
+  if (!gl) return fail("GL: " + gl.error().message, kUnreadable);
+  if (Status s = (*gl)->addMesh(toMeshData(mesh)); !s) return fail(o.input + ": " + s.error().message, kInvalid);
   std::fprintf(stderr, "render-mesh: %s, %zu triangle%s, %dx%d, GL %s: %s\n", o.input.c_str(), mesh.triangles.size(),
                mesh.triangles.size() == 1 ? "" : "s", camera->width, camera->height, o.gl.context.c_str(),
                (*gl)->context().description().c_str());
   const auto start = std::chrono::steady_clock::now();
-  if (Status s = (*gl)->draw(*camera, RayCastOptions{}); !s) {
-    std::fprintf(stderr, "error: GL: %s\n", s.error().message.c_str());
-    return kUnreadable;
-  }
+  if (Status s = (*gl)->draw(*camera, RayCastOptions{}); !s) return fail("GL: " + s.error().message, kUnreadable);
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   const viewer::GlFrame frame = (*gl)->read(*camera);
   const nlohmann::json stats = {{"seconds", seconds},
@@ -87,24 +67,17 @@ int runGl(const RenderMeshOptions& o, const meshref::TriangleMesh& mesh) {
 int run(const RenderMeshOptions& o) {
   auto mesh = meshref::readObj(o.input);
   if (!mesh) {
-    std::fprintf(stderr, "error: %s\n", mesh.error().message.c_str());
     // A file that opens but does not hold a usable mesh is invalid input, not unreadable.
     std::error_code ec;
     const bool readable = std::filesystem::is_regular_file(o.input, ec) && std::ifstream(o.input).good();
-    return readable ? kInvalid : kUnreadable;
+    return fail(mesh.error().message, readable ? kInvalid : kUnreadable);
   }
   for (const std::string& warning : mesh->warnings) std::fprintf(stderr, "warning: %s\n", warning.c_str());
   if (o.backend == "gl") return runGl(o, *mesh);
   auto renderer = meshref::EmbreeRenderer::create(*mesh);
-  if (!renderer) {
-    std::fprintf(stderr, "error: %s: %s\n", o.input.c_str(), renderer.error().message.c_str());
-    return kInvalid;
-  }
+  if (!renderer) return fail(o.input + ": " + renderer.error().message, kInvalid);
   auto camera = o.camera.resolve(renderer->bounds());
-  if (!camera) {
-    std::fprintf(stderr, "error: %s\n", camera.error().message.c_str());
-    return kUsage;
-  }
+  if (!camera) return fail(camera.error().message, kUsage);
   std::fprintf(stderr, "render-mesh: %s, %zu triangle%s, %dx%d (scene built in %.3f s)\n", o.input.c_str(),
                mesh->triangles.size(), mesh->triangles.size() == 1 ? "" : "s", camera->width, camera->height,
                renderer->buildSeconds());
@@ -130,7 +103,8 @@ void addRenderMeshCommand(CLI::App& app, int& exitCode) {
   auto o = std::make_shared<RenderMeshOptions>();
   CLI::App* cmd =
       app.add_subcommand("render-mesh", "Render an OBJ mesh with the reference renderer (Embree) or OpenGL");
-  cmd->add_option("input", o->input, "Mesh (OBJ; materials from the MTL files it names: Kd colour, d opacity)")->required();
+  cmd->add_option("input", o->input, "Mesh (OBJ; materials from the MTL files it names: Kd colour, d opacity)")
+      ->required();
   cmd->add_option("-o,--output", o->output, "Output image (PNG)")->required();
   o->camera.addTo(*cmd);
   cmd->add_option("--backend", o->backend, "Renderer: cpu (Embree ray tracing) or gl (OpenGL rasterisation)")
@@ -139,7 +113,8 @@ void addRenderMeshCommand(CLI::App& app, int& exitCode) {
   o->gl.addTo(*cmd);
   cmd->add_option("--depth", o->depth, "Also write the distance along each ray (metres, +inf for misses) as PFM");
   cmd->add_option("--stats", o->stats, "Write timing statistics as JSON");
-  cmd->add_option("--threads", o->threads, "Worker threads of the cpu back-end (0: all cores)")->check(CLI::NonNegativeNumber);
+  cmd->add_option("--threads", o->threads, "Worker threads of the cpu back-end (0: all cores)")
+      ->check(CLI::NonNegativeNumber);
   cmd->footer(
       "With no camera flags the camera is fitted to the mesh's bounding box exactly as `nut render` fits it to an\n"
       "HNI's root block, so a mesh and its HNI render from the same view.\n\n"

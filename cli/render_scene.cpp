@@ -18,11 +18,6 @@ namespace nut::cli {
 
 namespace {
 
-int fail(const std::string& message, int code) {
-  std::fprintf(stderr, "error: %s\n", message.c_str());
-  return code;
-}
-
 void include(WorldBox& bounds, const glm::dvec3& p) {
   bounds.min = glm::min(bounds.min, p);
   bounds.max = glm::max(bounds.max, p);

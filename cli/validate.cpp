@@ -19,13 +19,11 @@ void addValidateCommand(CLI::App& app, int& exitCode) {
   cmd->callback([path, &exitCode] {
     auto png = readPng(*path);
     if (!png) {
-      std::fprintf(stderr, "error: %s\n", png.error().message.c_str());
-      exitCode = kUnreadable;
+      exitCode = fail(png.error().message, kUnreadable);
       return;
     }
     if (Status s = validate(png->image); !s) {
-      std::fprintf(stderr, "error: %s: invalid HNI: %s\n", path->c_str(), s.error().message.c_str());
-      exitCode = kInvalid;
+      exitCode = fail(*path + ": invalid HNI: " + s.error().message, kInvalid);
       return;
     }
     std::printf("%s: valid HNI, %dx%d px\n", path->c_str(), png->image.width, png->image.height);
