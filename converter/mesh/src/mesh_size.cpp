@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstring>
 #include <limits>
+#include <optional>
 #include <string>
 
 #include <glm/common.hpp>
@@ -29,87 +30,103 @@ void padTo4(std::vector<std::uint8_t>& out, std::uint8_t with) {
   while (out.size() % 4) out.push_back(with);
 }
 
-}  // namespace
+// One material's triangles, quantized to 16 bits per axis on the mesh's box (one step for all
+// axes, as gltfpack does), their vertices deduplicated, ordered for the vertex cache and fetch,
+// and encoded by meshoptimizer.
+struct EncodedPrimitive {
+  std::vector<unsigned char> vertices, indices;
+  std::size_t vertexCount = 0, indexCount = 0;
+  glm::dvec3 lo{65535}, hi{0};  // quantized bounds, for the accessor
+};
 
-std::vector<std::uint8_t> meshoptGlb(const Mesh& mesh) {
-  const WorldBox box = mesh.bounds();
-  const glm::dvec3 extent = glm::max(box.max - box.min, glm::dvec3(1e-9));
-  const double scale = std::max({extent.x, extent.y, extent.z}) / 65535.0;  // one step, all axes (gltfpack)
+std::optional<EncodedPrimitive> encodePrimitive(const Mesh& mesh, std::size_t material, const glm::dvec3& origin,
+                                                double scale) {
+  std::vector<unsigned int> indices;
+  for (std::size_t t = 0; t < mesh.triangles.size(); ++t)
+    if (mesh.triangleMaterial[t] == material)
+      for (std::uint32_t v : mesh.triangles[t]) indices.push_back(v);
+  if (indices.empty()) return std::nullopt;
+  std::vector<Quantized> vertices;
+  vertices.reserve(indices.size());
+  for (unsigned int& i : indices) {
+    const glm::dvec3 q = (mesh.positions[i] - origin) / scale;
+    vertices.push_back({static_cast<std::uint16_t>(std::lround(q.x)), static_cast<std::uint16_t>(std::lround(q.y)),
+                        static_cast<std::uint16_t>(std::lround(q.z)), 0});
+    i = static_cast<unsigned int>(vertices.size() - 1);
+  }
+  std::vector<unsigned int> remap(indices.size());
+  const std::size_t unique = meshopt_generateVertexRemap(remap.data(), indices.data(), indices.size(), vertices.data(),
+                                                         vertices.size(), sizeof(Quantized));
+  std::vector<Quantized> compact(unique);
+  meshopt_remapIndexBuffer(indices.data(), indices.data(), indices.size(), remap.data());
+  meshopt_remapVertexBuffer(compact.data(), vertices.data(), vertices.size(), sizeof(Quantized), remap.data());
+  meshopt_optimizeVertexCache(indices.data(), indices.data(), indices.size(), unique);
+  meshopt_optimizeVertexFetch(compact.data(), indices.data(), indices.size(), compact.data(), unique,
+                              sizeof(Quantized));
 
+  EncodedPrimitive out;
+  out.vertexCount = unique;
+  out.indexCount = indices.size();
+  out.vertices.resize(meshopt_encodeVertexBufferBound(unique, sizeof(Quantized)));
+  out.vertices.resize(
+      meshopt_encodeVertexBuffer(out.vertices.data(), out.vertices.size(), compact.data(), unique, sizeof(Quantized)));
+  out.indices.resize(meshopt_encodeIndexBufferBound(indices.size(), unique));
+  out.indices.resize(meshopt_encodeIndexBuffer(out.indices.data(), out.indices.size(), indices.data(), indices.size()));
+  for (const Quantized& q : compact) {
+    out.lo = glm::min(out.lo, glm::dvec3(q.x, q.y, q.z));
+    out.hi = glm::max(out.hi, glm::dvec3(q.x, q.y, q.z));
+  }
+  return out;
+}
+
+// The binary chunk and the glTF objects that describe it.
+struct GltfParts {
   std::vector<std::uint8_t> bin;
-  nlohmann::json bufferViews = nlohmann::json::array(), accessors = nlohmann::json::array(), primitives = nlohmann::json::array(),
-                 materials = nlohmann::json::array();
-  for (std::size_t m = 0; m < mesh.materials.size(); ++m) {
-    // Triangles of this material, with their own compact vertex list.
-    std::vector<unsigned int> indices;
-    for (std::size_t t = 0; t < mesh.triangles.size(); ++t)
-      if (mesh.triangleMaterial[t] == m)
-        for (std::uint32_t v : mesh.triangles[t]) indices.push_back(v);
-    if (indices.empty()) continue;
-    std::vector<Quantized> vertices;
-    vertices.reserve(indices.size());
-    for (unsigned int& i : indices) {
-      const glm::dvec3 q = (mesh.positions[i] - box.min) / scale;
-      vertices.push_back({static_cast<std::uint16_t>(std::lround(q.x)), static_cast<std::uint16_t>(std::lround(q.y)),
-                          static_cast<std::uint16_t>(std::lround(q.z)), 0});
-      i = static_cast<unsigned int>(vertices.size() - 1);
-    }
-    std::vector<unsigned int> remap(indices.size());
-    const std::size_t unique = meshopt_generateVertexRemap(remap.data(), indices.data(), indices.size(), vertices.data(),
-                                                           vertices.size(), sizeof(Quantized));
-    std::vector<Quantized> compact(unique);
-    meshopt_remapIndexBuffer(indices.data(), indices.data(), indices.size(), remap.data());
-    meshopt_remapVertexBuffer(compact.data(), vertices.data(), vertices.size(), sizeof(Quantized), remap.data());
-    meshopt_optimizeVertexCache(indices.data(), indices.data(), indices.size(), unique);
-    meshopt_optimizeVertexFetch(compact.data(), indices.data(), indices.size(), compact.data(), unique, sizeof(Quantized));
+  nlohmann::json bufferViews = nlohmann::json::array(), accessors = nlohmann::json::array(),
+                 primitives = nlohmann::json::array(), materials = nlohmann::json::array();
 
-    std::vector<unsigned char> encodedVertices(meshopt_encodeVertexBufferBound(unique, sizeof(Quantized)));
-    encodedVertices.resize(meshopt_encodeVertexBuffer(encodedVertices.data(), encodedVertices.size(), compact.data(), unique,
-                                                      sizeof(Quantized)));
-    std::vector<unsigned char> encodedIndices(meshopt_encodeIndexBufferBound(indices.size(), unique));
-    encodedIndices.resize(meshopt_encodeIndexBuffer(encodedIndices.data(), encodedIndices.size(), indices.data(), indices.size()));
+  // Appends meshoptimizer-encoded data as a buffer view; returns its index.
+  std::size_t addMeshoptView(const std::vector<unsigned char>& data, std::size_t stride, std::size_t count,
+                             const char* mode) {
+    const std::size_t offset = bin.size();
+    append(bin, data.data(), data.size());
+    padTo4(bin, 0);
+    bufferViews.push_back({{"buffer", 0},
+                           {"byteOffset", offset},
+                           {"byteLength", data.size()},
+                           {"extensions",
+                            {{"EXT_meshopt_compression",
+                              {{"buffer", 0},
+                               {"byteOffset", offset},
+                               {"byteLength", data.size()},
+                               {"byteStride", stride},
+                               {"count", count},
+                               {"mode", mode}}}}}});
+    return bufferViews.size() - 1;
+  }
 
-    const auto view = [&](const std::vector<unsigned char>& data, std::size_t stride, std::size_t count, const char* mode) {
-      const std::size_t offset = bin.size();
-      append(bin, data.data(), data.size());
-      padTo4(bin, 0);
-      bufferViews.push_back({{"buffer", 0},
-                             {"byteOffset", offset},
-                             {"byteLength", data.size()},
-                             {"extensions",
-                              {{"EXT_meshopt_compression",
-                                {{"buffer", 0}, {"byteOffset", offset}, {"byteLength", data.size()}, {"byteStride", stride},
-                                 {"count", count}, {"mode", mode}}}}}});
-      return bufferViews.size() - 1;
-    };
-    const std::size_t positionView = view(encodedVertices, sizeof(Quantized), unique, "ATTRIBUTES");
-    const std::size_t indexView = view(encodedIndices, 4, indices.size(), "TRIANGLES");
-    glm::dvec3 lo(65535), hi(0);
-    for (const Quantized& q : compact) {
-      lo = glm::min(lo, glm::dvec3(q.x, q.y, q.z));
-      hi = glm::max(hi, glm::dvec3(q.x, q.y, q.z));
-    }
-    accessors.push_back({{"bufferView", positionView}, {"componentType", 5123}, {"count", unique}, {"type", "VEC3"},
-                         {"min", {lo.x, lo.y, lo.z}}, {"max", {hi.x, hi.y, hi.z}}});
-    accessors.push_back({{"bufferView", indexView}, {"componentType", 5125}, {"count", indices.size()}, {"type", "SCALAR"}});
-    const Material& mat = mesh.materials[m];
+  void addPrimitive(const EncodedPrimitive& p, const Material& mat) {
+    const std::size_t positionView = addMeshoptView(p.vertices, sizeof(Quantized), p.vertexCount, "ATTRIBUTES");
+    const std::size_t indexView = addMeshoptView(p.indices, 4, p.indexCount, "TRIANGLES");
+    accessors.push_back({{"bufferView", positionView},
+                         {"componentType", 5123},
+                         {"count", p.vertexCount},
+                         {"type", "VEC3"},
+                         {"min", {p.lo.x, p.lo.y, p.lo.z}},
+                         {"max", {p.hi.x, p.hi.y, p.hi.z}}});
+    accessors.push_back(
+        {{"bufferView", indexView}, {"componentType", 5125}, {"count", p.indexCount}, {"type", "SCALAR"}});
     materials.push_back({{"pbrMetallicRoughness",
-                          {{"baseColorFactor", {mat.r / 255.0, mat.g / 255.0, mat.b / 255.0, mat.opacity / 255.0}}, {"metallicFactor", 0}}}});
-    primitives.push_back({{"attributes", {{"POSITION", accessors.size() - 2}}}, {"indices", accessors.size() - 1},
+                          {{"baseColorFactor", {mat.r / 255.0, mat.g / 255.0, mat.b / 255.0, mat.opacity / 255.0}},
+                           {"metallicFactor", 0}}}});
+    primitives.push_back({{"attributes", {{"POSITION", accessors.size() - 2}}},
+                          {"indices", accessors.size() - 1},
                           {"material", materials.size() - 1}});
   }
-  const nlohmann::json gltf = {
-      {"asset", {{"version", "2.0"}, {"generator", "nut mesh_size"}}},
-      {"extensionsUsed", {"EXT_meshopt_compression", "KHR_mesh_quantization"}},
-      {"extensionsRequired", {"EXT_meshopt_compression", "KHR_mesh_quantization"}},
-      {"buffers", {{{"byteLength", bin.size()}}}},
-      {"bufferViews", bufferViews},
-      {"accessors", accessors},
-      {"materials", materials},
-      {"meshes", {{{"primitives", primitives}}}},
-      {"nodes", {{{"mesh", 0}, {"translation", {box.min.x, box.min.y, box.min.z}}, {"scale", {scale, scale, scale}}}}},
-      {"scenes", {{{"nodes", {0}}}}},
-      {"scene", 0}};
+};
+
+// The GLB container: header, JSON chunk (padded with spaces), binary chunk.
+std::vector<std::uint8_t> glbOf(const nlohmann::json& gltf, const std::vector<std::uint8_t>& bin) {
   std::vector<std::uint8_t> json;
   const std::string text = gltf.dump();
   append(json, text.data(), text.size());
@@ -125,6 +142,30 @@ std::vector<std::uint8_t> meshoptGlb(const Mesh& mesh) {
   appendU32(glb, 0x004E4942);  // "BIN"
   append(glb, bin.data(), bin.size());
   return glb;
+}
+
+}  // namespace
+
+std::vector<std::uint8_t> meshoptGlb(const Mesh& mesh) {
+  const WorldBox box = mesh.bounds();
+  const glm::dvec3 extent = glm::max(box.max - box.min, glm::dvec3(1e-9));
+  const double scale = std::max({extent.x, extent.y, extent.z}) / 65535.0;  // one step, all axes (gltfpack)
+  GltfParts parts;
+  for (std::size_t m = 0; m < mesh.materials.size(); ++m)
+    if (auto primitive = encodePrimitive(mesh, m, box.min, scale)) parts.addPrimitive(*primitive, mesh.materials[m]);
+  const nlohmann::json gltf = {
+      {"asset", {{"version", "2.0"}, {"generator", "nut mesh_size"}}},
+      {"extensionsUsed", {"EXT_meshopt_compression", "KHR_mesh_quantization"}},
+      {"extensionsRequired", {"EXT_meshopt_compression", "KHR_mesh_quantization"}},
+      {"buffers", {{{"byteLength", parts.bin.size()}}}},
+      {"bufferViews", parts.bufferViews},
+      {"accessors", parts.accessors},
+      {"materials", parts.materials},
+      {"meshes", {{{"primitives", parts.primitives}}}},
+      {"nodes", {{{"mesh", 0}, {"translation", {box.min.x, box.min.y, box.min.z}}, {"scale", {scale, scale, scale}}}}},
+      {"scenes", {{{"nodes", {0}}}}},
+      {"scene", 0}};
+  return glbOf(gltf, parts.bin);
 }
 
 std::vector<std::uint8_t> gzip(const std::vector<std::uint8_t>& bytes) {
