@@ -73,7 +73,8 @@ void Builder::findQuadrics() {
       if (!fresh) sets.unite(f, it->second);
     }
   }
-  for (std::vector<std::uint32_t>& members : sets.groups([&](std::uint32_t f) { return faces[f].kind == FaceKind::Slope; })) {
+  for (std::vector<std::uint32_t>& members :
+       sets.groups([&](std::uint32_t f) { return faces[f].kind == FaceKind::Slope; })) {
     QuadricPiece piece;
     piece.e = faces[members.front()].axis;
     const int e = piece.e, u = kU[e], v = kV[e];
@@ -113,8 +114,10 @@ void Builder::findQuadrics() {
 }
 
 // A fitted piece: its faces are shown by its cells (or sub-block), in the material of largest area.
-void Builder::keepPiece(QuadricPiece piece, std::vector<std::uint32_t> members, const std::vector<double>& materialArea) {
-  piece.material = static_cast<std::uint16_t>(std::max_element(materialArea.begin(), materialArea.end()) - materialArea.begin());
+void Builder::keepPiece(QuadricPiece piece, std::vector<std::uint32_t> members,
+                        const std::vector<double>& materialArea) {
+  piece.material =
+      static_cast<std::uint16_t>(std::max_element(materialArea.begin(), materialArea.end()) - materialArea.begin());
   const auto id = static_cast<int>(quadrics.size());
   for (std::uint32_t f : members) {
     faces[f].kind = FaceKind::Quadric;
@@ -130,7 +133,8 @@ void Builder::keepPiece(QuadricPiece piece, std::vector<std::uint32_t> members, 
 // were (slopes, or general faces for the mesh), and its box's planes become boundaries all the
 // same, so that the cells its faces cut, trimmed where they are not shown, are the box's alone
 // rather than whatever large cells reach over the corner.
-bool Builder::facetsFollowSurface(const QuadricPiece& piece, const std::vector<std::uint32_t>& members, const PieceSpan& span) {
+bool Builder::facetsFollowSurface(const QuadricPiece& piece, const std::vector<std::uint32_t>& members,
+                                  const PieceSpan& span) {
   const double minCos = std::cos(kMaxFacetTurnDeg * std::numbers::pi / 180);
   const bool fine = std::all_of(members.begin(), members.end(), [&](std::uint32_t f) {
     const dvec3 facet = glm::normalize(faces[f].areaVector);
@@ -228,8 +232,10 @@ void Builder::addQuadricBounds() {
   for (const QuadricPiece& q : quadrics) {
     if (!q.represented) continue;
     const int e = q.e, u = kU[e], v = kV[e];
-    insertBoundaries(bounds[static_cast<std::size_t>(u)], {q.centre.x, q.centre.x + q.quadrant[0] * q.radius.x}, size[u], tol);
-    insertBoundaries(bounds[static_cast<std::size_t>(v)], {q.centre.y, q.centre.y + q.quadrant[1] * q.radius.y}, size[v], tol);
+    insertBoundaries(bounds[static_cast<std::size_t>(u)], {q.centre.x, q.centre.x + q.quadrant[0] * q.radius.x},
+                     size[u], tol);
+    insertBoundaries(bounds[static_cast<std::size_t>(v)], {q.centre.y, q.centre.y + q.quadrant[1] * q.radius.y},
+                     size[v], tol);
     insertBoundaries(bounds[static_cast<std::size_t>(e)], {q.e0, q.e1}, size[e], tol);
   }
 }
@@ -243,6 +249,115 @@ bool solidInPiece(const QuadricPiece& q, std::int8_t layer, const dvec3& x, doub
   if (group == SolidGroup::Box) return true;
   const double widened = q.planar ? slack * q.rhoPerMetre() : slack / q.reach();
   return convexQuadric(group) ? q.rho(x) <= 1 + widened : q.rho(x) >= 1 - widened;
+}
+
+}  // namespace
+
+namespace {
+
+// A piece's box in cells: its extent along each axis snapped to the nearest cells. Returns
+// whether the boundaries there are within the tolerance of the piece's box.
+bool placeInCells(const Builder& b, QuadricPiece& q) {
+  const int e = q.e, u = kU[e], v = kV[e];
+  const auto& U = b.bounds[static_cast<std::size_t>(u)];
+  const auto& V = b.bounds[static_cast<std::size_t>(v)];
+  const auto& E = b.bounds[static_cast<std::size_t>(e)];
+  const double tol = b.tol;
+  const double u1 = q.centre.x + q.quadrant[0] * q.radius.x, v1 = q.centre.y + q.quadrant[1] * q.radius.y;
+  const double uLo = std::min(q.centre.x, u1), uHi = std::max(q.centre.x, u1);
+  const double vLo = std::min(q.centre.y, v1), vHi = std::max(q.centre.y, v1);
+  q.lo[static_cast<std::size_t>(u)] = cellOf(U, uLo + tol);
+  q.hi[static_cast<std::size_t>(u)] = cellOf(U, uHi - tol) + 1;
+  q.lo[static_cast<std::size_t>(v)] = cellOf(V, vLo + tol);
+  q.hi[static_cast<std::size_t>(v)] = cellOf(V, vHi - tol) + 1;
+  q.lo[static_cast<std::size_t>(e)] = cellOf(E, q.e0 + tol);
+  q.hi[static_cast<std::size_t>(e)] = cellOf(E, q.e1 - tol) + 1;
+  const auto at = [&](int axis, bool high) {
+    const auto a = static_cast<std::size_t>(axis);
+    return b.bounds[a][static_cast<std::size_t>(high ? q.hi[a] : q.lo[a])];
+  };
+  return snappedWithin(at(u, false), uLo, tol) && snappedWithin(at(u, true), uHi, tol) &&
+         snappedWithin(at(v, false), vLo, tol) && snappedWithin(at(v, true), vHi, tol) &&
+         snappedWithin(at(e, false), q.e0, tol) && snappedWithin(at(e, true), q.e1, tol);
+}
+
+// The solid each layer of the piece's box shows, by the winding number at a point well inside the
+// piece and one well outside it. False when a layer is empty at both (the piece is missing from
+// the solid there: the mesh must show it).
+bool sampleLayers(const Builder& b, QuadricPiece& q, const LazyWinding& winding) {
+  const int e = q.e, u = kU[e], v = kV[e];
+  const auto& E = b.bounds[static_cast<std::size_t>(e)];
+  const auto at = [&](int axis, bool high) {
+    const auto a = static_cast<std::size_t>(axis);
+    return b.bounds[a][static_cast<std::size_t>(high ? q.hi[a] : q.lo[a])];
+  };
+  const double ua = at(u, false), ub = at(u, true), va = at(v, false), vb = at(v, true), ea = at(e, false),
+               eb = at(e, true);
+  // A quarter cylinder: the box's edge on the axis, u = 1 (corner bit 0) when the arc lies below
+  // the axis along u. A sphere octant or corner slope (e = z): the box's corner at the centre.
+  const int orientation = q.octant() ? (q.quadrant[0] < 0 ? 1 : 0) + (q.quadrant[1] < 0 ? 2 : 0) + (q.eSign < 0 ? 4 : 0)
+                                     : e * 4 + (q.quadrant[0] < 0 ? 1 : 0) + (q.quadrant[1] < 0 ? 2 : 0);
+  const SolidGroup convex = q.planar     ? SolidGroup::Pyramid
+                            : q.octant() ? SolidGroup::SphereOctant
+                                         : SolidGroup::QuarterCylinder;
+  const SolidGroup concave = q.planar     ? SolidGroup::InversePyramid
+                             : q.octant() ? SolidGroup::InverseSphereOctant
+                                          : SolidGroup::InverseQuarterCylinder;
+  const double axisU = q.quadrant[0] > 0 ? ua : ub, axisV = q.quadrant[1] > 0 ? va : vb, axisE = q.eSign > 0 ? ea : eb;
+  q.layers.clear();
+  const int layerCount = q.octant() ? 1 : q.hi[static_cast<std::size_t>(e)] - q.lo[static_cast<std::size_t>(e)];
+  for (int k = 0; k < layerCount; ++k) {
+    std::array<bool, 2> in{};
+    for (int h = 0; h < 2; ++h) {
+      const double share = q.planar ? (h == 0 ? kPyramidInnerSample : kPyramidOuterSample)
+                           : h == 0 ? kInnerSample
+                                    : kOuterSample;
+      dvec3 x;
+      const int layer = q.lo[static_cast<std::size_t>(e)] + k;
+      x[e] = q.octant() ? axisE + q.eSign * share * (eb - ea)
+                        : 0.5 * (E[static_cast<std::size_t>(layer)] + E[static_cast<std::size_t>(layer + 1)]);
+      x[u] = axisU + q.quadrant[0] * share * (ub - ua);
+      x[v] = axisV + q.quadrant[1] * share * (vb - va);
+      in[static_cast<std::size_t>(h)] = winding(x + b.origin) >= kInside;
+    }
+    if (!in[0] && !in[1]) return false;
+    q.layers.push_back(in[0] && in[1]
+                           ? std::int8_t{0}
+                           : static_cast<std::int8_t>(makeSolid(in[0] ? convex : concave, orientation).index));
+  }
+  return true;
+}
+
+// Gives the cells of piece `id`'s box their layer's solid (and, for a sub-block, the piece), and
+// the curved face's share to the cell where the surface's middle is, one per layer (a corner
+// slope's: its centroid).
+void markCells(Builder& b, int id) {
+  const QuadricPiece& q = b.quadrics[static_cast<std::size_t>(id)];
+  const int e = q.e, u = kU[e], v = kV[e];
+  const auto& U = b.bounds[static_cast<std::size_t>(u)];
+  const auto& V = b.bounds[static_cast<std::size_t>(v)];
+  const auto& E = b.bounds[static_cast<std::size_t>(e)];
+  const auto su = static_cast<std::size_t>(u), sv = static_cast<std::size_t>(v), se = static_cast<std::size_t>(e);
+  const double middle = q.planar ? 1.0 / 3 : q.octant() ? 1 / std::numbers::sqrt3 : std::numbers::sqrt2 / 2;
+  std::array<int, 3> arcCell{};
+  arcCell[su] = cellOf(U, q.centre.x + q.quadrant[0] * q.radius.x * middle);
+  arcCell[sv] = cellOf(V, q.centre.y + q.quadrant[1] * q.radius.y * middle);
+  if (q.octant()) arcCell[se] = cellOf(E, (q.eSign > 0 ? q.e0 : q.e1) + q.eSign * (q.e1 - q.e0) * middle);
+  for (int k = q.lo[se]; k < q.hi[se]; ++k) {
+    const std::int8_t layer = q.layers[q.layerOf(k)];
+    std::array<int, 3> c{};
+    c[se] = k;
+    for (c[sv] = q.lo[sv]; c[sv] < q.hi[sv]; ++c[sv])
+      for (c[su] = q.lo[su]; c[su] < q.hi[su]; ++c[su]) {
+        b.shape[b.index(c)] = layer;
+        if (q.subBlock) b.subPiece[b.index(c)] = id;
+      }
+    if (layer == 0 || (q.octant() && k != arcCell[se])) continue;
+    if (!q.octant()) arcCell[se] = k;
+    const double length =
+        q.octant() ? q.e1 - q.e0 : E[static_cast<std::size_t>(k + 1)] - E[static_cast<std::size_t>(k)];
+    b.wedgeShares.push_back({b.index(arcCell), q.material, 6, q.area * length / (q.e1 - q.e0)});
+  }
 }
 
 }  // namespace
@@ -267,53 +382,12 @@ bool Builder::fitQuadrics(const LazyWinding& winding) {
     QuadricPiece& q = quadrics[id];
     q.subBlock = false;
     if (!q.represented) continue;
-    const int e = q.e, u = kU[e], v = kV[e];
-    const auto& U = bounds[static_cast<std::size_t>(u)];
-    const auto& V = bounds[static_cast<std::size_t>(v)];
-    const auto& E = bounds[static_cast<std::size_t>(e)];
-    const double u1 = q.centre.x + q.quadrant[0] * q.radius.x, v1 = q.centre.y + q.quadrant[1] * q.radius.y;
-    const double uLo = std::min(q.centre.x, u1), uHi = std::max(q.centre.x, u1);
-    const double vLo = std::min(q.centre.y, v1), vHi = std::max(q.centre.y, v1);
-    q.lo[static_cast<std::size_t>(u)] = cellOf(U, uLo + tol);
-    q.hi[static_cast<std::size_t>(u)] = cellOf(U, uHi - tol) + 1;
-    q.lo[static_cast<std::size_t>(v)] = cellOf(V, vLo + tol);
-    q.hi[static_cast<std::size_t>(v)] = cellOf(V, vHi - tol) + 1;
-    q.lo[static_cast<std::size_t>(e)] = cellOf(E, q.e0 + tol);
-    q.hi[static_cast<std::size_t>(e)] = cellOf(E, q.e1 - tol) + 1;
-    const auto at = [&](int axis, bool high) {
-      const auto& B = bounds[static_cast<std::size_t>(axis)];
-      return B[static_cast<std::size_t>(high ? q.hi[static_cast<std::size_t>(axis)] : q.lo[static_cast<std::size_t>(axis)])];
+    bool ok = placeInCells(*this, q);
+    const auto cellsAlong = [&](int axis) {
+      return q.hi[static_cast<std::size_t>(axis)] - q.lo[static_cast<std::size_t>(axis)];
     };
-    const auto cellsAlong = [&](int axis) { return q.hi[static_cast<std::size_t>(axis)] - q.lo[static_cast<std::size_t>(axis)]; };
-    const double ua = at(u, false), ub = at(u, true), va = at(v, false), vb = at(v, true), ea = at(e, false), eb = at(e, true);
-    bool ok = snappedWithin(ua, uLo, tol) && snappedWithin(ub, uHi, tol) && snappedWithin(va, vLo, tol) &&
-              snappedWithin(vb, vHi, tol) && snappedWithin(ea, q.e0, tol) && snappedWithin(eb, q.e1, tol);
-    q.subBlock = cellsAlong(u) > 1 || cellsAlong(v) > 1 || (q.octant() && cellsAlong(e) > 1);
-    // A quarter cylinder: the box's edge on the axis, u = 1 (corner bit 0) when the arc lies below
-    // the axis along u. A sphere octant or corner slope (e = z): the box's corner at the centre.
-    const int orientation = q.octant() ? (q.quadrant[0] < 0 ? 1 : 0) + (q.quadrant[1] < 0 ? 2 : 0) + (q.eSign < 0 ? 4 : 0)
-                                       : e * 4 + (q.quadrant[0] < 0 ? 1 : 0) + (q.quadrant[1] < 0 ? 2 : 0);
-    const SolidGroup convex = q.planar ? SolidGroup::Pyramid : q.octant() ? SolidGroup::SphereOctant : SolidGroup::QuarterCylinder;
-    const SolidGroup concave = q.planar   ? SolidGroup::InversePyramid
-                               : q.octant() ? SolidGroup::InverseSphereOctant
-                                            : SolidGroup::InverseQuarterCylinder;
-    const double axisU = q.quadrant[0] > 0 ? ua : ub, axisV = q.quadrant[1] > 0 ? va : vb, axisE = q.eSign > 0 ? ea : eb;
-    q.layers.clear();
-    const int layerCount = q.octant() ? 1 : cellsAlong(e);
-    for (int k = 0; ok && k < layerCount; ++k) {
-      std::array<bool, 2> in{};
-      for (int h = 0; h < 2; ++h) {
-        const double share = q.planar ? (h == 0 ? kPyramidInnerSample : kPyramidOuterSample) : h == 0 ? kInnerSample : kOuterSample;
-        dvec3 x;
-        const int layer = q.lo[static_cast<std::size_t>(e)] + k;
-        x[e] = q.octant() ? axisE + q.eSign * share * (eb - ea) : 0.5 * (E[static_cast<std::size_t>(layer)] + E[static_cast<std::size_t>(layer + 1)]);
-        x[u] = axisU + q.quadrant[0] * share * (ub - ua);
-        x[v] = axisV + q.quadrant[1] * share * (vb - va);
-        in[static_cast<std::size_t>(h)] = winding(x + origin) >= kInside;
-      }
-      if (!in[0] && !in[1]) ok = false;  // the piece is missing from the solid here: the mesh must show it
-      q.layers.push_back(in[0] && in[1] ? std::int8_t{0} : static_cast<std::int8_t>(makeSolid(in[0] ? convex : concave, orientation).index));
-    }
+    q.subBlock = cellsAlong(kU[q.e]) > 1 || cellsAlong(kV[q.e]) > 1 || (q.octant() && cellsAlong(q.e) > 1);
+    if (ok) ok = sampleLayers(*this, q, winding);
     if (ok && q.subBlock) ok = subBlockFits(static_cast<int>(id), winding);
     if (!ok) {
       q.represented = false;
@@ -321,27 +395,7 @@ bool Builder::fitQuadrics(const LazyWinding& winding) {
       all = false;
       continue;
     }
-    // The curved face's share goes to the cell where the surface's middle is, one per layer (a
-    // corner slope's: its centroid).
-    const double middle = q.planar ? 1.0 / 3 : q.octant() ? 1 / std::numbers::sqrt3 : std::numbers::sqrt2 / 2;
-    std::array<int, 3> arcCell{};
-    arcCell[static_cast<std::size_t>(u)] = cellOf(U, q.centre.x + q.quadrant[0] * q.radius.x * middle);
-    arcCell[static_cast<std::size_t>(v)] = cellOf(V, q.centre.y + q.quadrant[1] * q.radius.y * middle);
-    if (q.octant()) arcCell[static_cast<std::size_t>(e)] = cellOf(E, (q.eSign > 0 ? q.e0 : q.e1) + q.eSign * (q.e1 - q.e0) * middle);
-    for (int k = q.lo[static_cast<std::size_t>(e)]; k < q.hi[static_cast<std::size_t>(e)]; ++k) {
-      const std::int8_t layer = q.layers[q.layerOf(k)];
-      std::array<int, 3> c{};
-      c[static_cast<std::size_t>(e)] = k;
-      for (c[static_cast<std::size_t>(v)] = q.lo[static_cast<std::size_t>(v)]; c[static_cast<std::size_t>(v)] < q.hi[static_cast<std::size_t>(v)]; ++c[static_cast<std::size_t>(v)])
-        for (c[static_cast<std::size_t>(u)] = q.lo[static_cast<std::size_t>(u)]; c[static_cast<std::size_t>(u)] < q.hi[static_cast<std::size_t>(u)]; ++c[static_cast<std::size_t>(u)]) {
-          shape[index(c)] = layer;
-          if (q.subBlock) subPiece[index(c)] = static_cast<int>(id);
-        }
-      if (layer == 0 || (q.octant() && k != arcCell[static_cast<std::size_t>(e)])) continue;
-      if (!q.octant()) arcCell[static_cast<std::size_t>(e)] = k;
-      const double length = q.octant() ? q.e1 - q.e0 : E[static_cast<std::size_t>(k + 1)] - E[static_cast<std::size_t>(k)];
-      wedgeShares.push_back({index(arcCell), q.material, 6, q.area * length / (q.e1 - q.e0)});
-    }
+    markCells(*this, static_cast<int>(id));
     if (q.planar) {
       ++stats.cornerSlopesAsCells;
       stats.cornerSlopesAsSubBlocks += q.subBlock;
@@ -382,11 +436,15 @@ bool Builder::subBlockFits(int piece, const LazyWinding& winding) const {
     for (int j = q.lo[static_cast<std::size_t>(v)]; j < q.hi[static_cast<std::size_t>(v)]; ++j)
       for (int i = q.lo[static_cast<std::size_t>(u)]; i < q.hi[static_cast<std::size_t>(u)]; ++i)
         for (int s = 0; s < (q.octant() ? 27 : 9); ++s) {
-          const double su = 0.1 + 0.4 * (s % 3), sv = 0.1 + 0.4 * (s / 3 % 3), se = q.octant() ? 0.1 + 0.4 * (s / 9) : 0.5;
+          const double su = 0.1 + 0.4 * (s % 3), sv = 0.1 + 0.4 * (s / 3 % 3),
+                       se = q.octant() ? 0.1 + 0.4 * (s / 9) : 0.5;
           dvec3 x;
-          x[e] = E[static_cast<std::size_t>(k)] + se * (E[static_cast<std::size_t>(k + 1)] - E[static_cast<std::size_t>(k)]);
-          x[u] = U[static_cast<std::size_t>(i)] + su * (U[static_cast<std::size_t>(i + 1)] - U[static_cast<std::size_t>(i)]);
-          x[v] = V[static_cast<std::size_t>(j)] + sv * (V[static_cast<std::size_t>(j + 1)] - V[static_cast<std::size_t>(j)]);
+          x[e] = E[static_cast<std::size_t>(k)] +
+                 se * (E[static_cast<std::size_t>(k + 1)] - E[static_cast<std::size_t>(k)]);
+          x[u] = U[static_cast<std::size_t>(i)] +
+                 su * (U[static_cast<std::size_t>(i + 1)] - U[static_cast<std::size_t>(i)]);
+          x[v] = V[static_cast<std::size_t>(j)] +
+                 sv * (V[static_cast<std::size_t>(j + 1)] - V[static_cast<std::size_t>(j)]);
           const double smallest = std::min({q.radius.x, q.radius.y, q.octant() ? q.e1 - q.e0 : q.radius.x});
           const double away = q.planar ? std::abs(q.rho(x) - 1) / q.rhoPerMetre() : std::abs(q.rho(x) - 1) * smallest;
           if (away < margin) continue;
