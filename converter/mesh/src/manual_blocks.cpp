@@ -19,14 +19,16 @@ namespace {
 // The cells of g0 that a world box covers (snapped outwards to whole cells), or nullopt when it
 // misses g0.
 std::optional<std::pair<std::array<int, 3>, std::array<int, 3>>> cellRange(const Block& g0, const WorldBox& box,
-                                                                          const glm::dvec3& originM) {
+                                                                           const glm::dvec3& originM) {
   std::array<int, 3> lo{}, hi{};
   for (int a = 0; a < 3; ++a) {
     const auto& bounds = g0.boundsM[static_cast<std::size_t>(a)];
     const double l = box.min[a] - originM[a], u = box.max[a] - originM[a];
     if (u <= 0 || l >= bounds.back()) return std::nullopt;
-    lo[static_cast<std::size_t>(a)] = std::max(0, static_cast<int>(std::upper_bound(bounds.begin(), bounds.end(), l) - bounds.begin()) - 1);
-    hi[static_cast<std::size_t>(a)] = std::min(g0.cellCount(a), static_cast<int>(std::lower_bound(bounds.begin(), bounds.end(), u) - bounds.begin()));
+    lo[static_cast<std::size_t>(a)] =
+        std::max(0, static_cast<int>(std::upper_bound(bounds.begin(), bounds.end(), l) - bounds.begin()) - 1);
+    hi[static_cast<std::size_t>(a)] =
+        std::min(g0.cellCount(a), static_cast<int>(std::lower_bound(bounds.begin(), bounds.end(), u) - bounds.begin()));
     if (hi[static_cast<std::size_t>(a)] <= lo[static_cast<std::size_t>(a)]) return std::nullopt;
   }
   return std::make_pair(lo, hi);
@@ -37,9 +39,9 @@ std::optional<std::pair<std::array<int, 3>, std::array<int, 3>>> cellRange(const
 // selected, which is part of an S cell.
 struct Piece {
   double widthM = 0.0;
-  int sCell = 0;               // the S cell it belongs to
-  std::int64_t posUnits = 0;   // its minimum corner inside S
-  bool wholeCell = true;       // it is the whole S cell
+  int sCell = 0;              // the S cell it belongs to
+  std::int64_t posUnits = 0;  // its minimum corner inside S
+  bool wholeCell = true;      // it is the whole S cell
 };
 
 // How the g0 cells from some start along one axis map onto S: g0 cell start + k shows S cell
@@ -85,69 +87,55 @@ std::optional<AxisMap> groupAxis(const Block& g0, int a, int start, const std::v
 // the selection cell for cell (the matching before S was simplified), which grouping against S
 // can miss: the tolerance is per group, so small differences in several merged cells add up, and
 // the greedy grouping can end a group early when a g0 cell is narrower than twice the tolerance.
-std::vector<AxisMap> axisMatches(const Block& g0, int a, int start, const std::array<std::vector<Piece>, 2>& pieces, double slack) {
+std::vector<AxisMap> axisMatches(const Block& g0, int a, int start, const std::array<std::vector<Piece>, 2>& pieces,
+                                 double slack) {
   std::vector<AxisMap> out;
   for (const auto& p : pieces)
-    if (auto m = groupAxis(g0, a, start, p, slack); m && std::find(out.begin(), out.end(), *m) == out.end()) out.push_back(std::move(*m));
+    if (auto m = groupAxis(g0, a, start, p, slack); m && std::find(out.begin(), out.end(), *m) == out.end())
+      out.push_back(std::move(*m));
   return out;
 }
 
-}  // namespace
-
-// The paper's user-selected block: the cells the box covers, simplified (neighbour layers holding
-// the same boxes and empty cells merge, so boundaries that only other parts of g0 needed go), become
-// block S. Every place of g0 whose cells can be grouped along each axis to match S's widths (within
-// the tolerance; groupAxis) and whose cells all equal the S cell they fall in redirects to S, each
-// cell with the offset of its own corner inside S; a cell that is part of a group shows only its
-// part of the S cell, so only boxes and empty S cells (which look the same however they are cut)
-// may be grouped. One record per distinct offset: places that match cell for cell share records,
-// so later repeats of the places are identical and the automatic search can tile them.
-void extractManual(Hierarchy& h, Block& g0, const WorldBox& box, const glm::dvec3& originM, double tolerance,
-                   BlockStats& stats) {
-  const auto range = cellRange(g0, box, originM);
-  if (!range) return;
-  const auto [lo, hi] = *range;
-  const Block selected = subBlock(g0, lo, hi);
-  Block pattern = selected;
-  simplify(pattern);
-  // 1e-9 m absorbs rounding of differences of boundaries, so a tolerance of 0 matches equal widths.
-  const double slack = tolerance + 1e-9;
-
-  // Per axis: the pieces of S and of the selection (whose boundaries include S's, the same values).
+// Per axis: the pieces of S (index 0) and of the selection (index 1), whose boundaries include
+// S's, the same values.
+std::array<std::array<std::vector<Piece>, 2>, 3> piecesOf(const Block& pattern, const Block& selected) {
   std::array<std::array<std::vector<Piece>, 2>, 3> pieces;
-  for (int a = 0; a < 3; ++a) {
-    const auto& sb = pattern.boundsM[static_cast<std::size_t>(a)];
-    const auto& ub = selected.boundsM[static_cast<std::size_t>(a)];
-    for (int i = 0; i < pattern.cellCount(a); ++i)
-      pieces[static_cast<std::size_t>(a)][0].push_back(
-          Piece{sb[static_cast<std::size_t>(i + 1)] - sb[static_cast<std::size_t>(i)], i, toUnits(sb[static_cast<std::size_t>(i)]), true});
-    for (int k = 0; k < selected.cellCount(a); ++k) {
-      const int i = static_cast<int>(std::upper_bound(sb.begin(), sb.end(), ub[static_cast<std::size_t>(k)]) - sb.begin()) - 1;
-      const bool whole = toUnits(ub[static_cast<std::size_t>(k)]) == toUnits(sb[static_cast<std::size_t>(i)]) &&
-                         toUnits(ub[static_cast<std::size_t>(k + 1)]) == toUnits(sb[static_cast<std::size_t>(i + 1)]);
-      pieces[static_cast<std::size_t>(a)][1].push_back(
-          Piece{ub[static_cast<std::size_t>(k + 1)] - ub[static_cast<std::size_t>(k)], i, toUnits(ub[static_cast<std::size_t>(k)]), whole});
+  for (std::size_t a = 0; a < 3; ++a) {
+    const auto& sb = pattern.boundsM[a];
+    const auto& ub = selected.boundsM[a];
+    for (std::size_t i = 0; i + 1 < sb.size(); ++i)
+      pieces[a][0].push_back(Piece{sb[i + 1] - sb[i], static_cast<int>(i), toUnits(sb[i]), true});
+    for (std::size_t k = 0; k + 1 < ub.size(); ++k) {
+      const auto i = static_cast<std::size_t>(std::upper_bound(sb.begin(), sb.end(), ub[k]) - sb.begin()) - 1;
+      const bool whole = toUnits(ub[k]) == toUnits(sb[i]) && toUnits(ub[k + 1]) == toUnits(sb[i + 1]);
+      pieces[a][1].push_back(Piece{ub[k + 1] - ub[k], static_cast<int>(i), toUnits(ub[k]), whole});
     }
   }
-  std::array<std::vector<std::vector<AxisMap>>, 3> matches;  // per axis and start
-  for (int a = 0; a < 3; ++a)
-    for (int s = 0; s < g0.cellCount(a); ++s)
-      matches[static_cast<std::size_t>(a)].push_back(axisMatches(g0, a, s, pieces[static_cast<std::size_t>(a)], slack));
+  return pieces;
+}
 
-  struct Place {
-    std::array<int, 3> at;
-    std::array<const AxisMap*, 3> map;
-  };
+// A place of g0 that shows S: its first cell, and how its cells map onto S along each axis.
+struct Place {
+  std::array<int, 3> at;
+  std::array<const AxisMap*, 3> map;
+};
+
+// The places of g0 that show S, found in cell order, none overlapping another. `matches`: per axis
+// and start cell, the ways g0's cells from there map onto S (axisMatches).
+std::vector<Place> findPlaces(const Block& g0, const Block& pattern,
+                              const std::array<std::vector<std::vector<AxisMap>>, 3>& matches) {
   std::vector<Place> places;
   std::vector<bool> claimed(g0.cells.size(), false);  // cells of places found, which others may not overlap
   const auto fits = [&](const std::array<int, 3>& at, const std::array<const AxisMap*, 3>& m) {
-    const std::array<int, 3> n{static_cast<int>(m[0]->sCell.size()), static_cast<int>(m[1]->sCell.size()), static_cast<int>(m[2]->sCell.size())};
+    const std::array<int, 3> n{static_cast<int>(m[0]->sCell.size()), static_cast<int>(m[1]->sCell.size()),
+                               static_cast<int>(m[2]->sCell.size())};
     for (int z = 0; z < n[2]; ++z)
       for (int y = 0; y < n[1]; ++y)
         for (int x = 0; x < n[0]; ++x) {
           const std::size_t index = g0.cellIndex(at[0] + x, at[1] + y, at[2] + z);
           if (claimed[index]) return false;
-          const auto sx = static_cast<std::size_t>(x), sy = static_cast<std::size_t>(y), sz = static_cast<std::size_t>(z);
+          const auto sx = static_cast<std::size_t>(x), sy = static_cast<std::size_t>(y),
+                     sz = static_cast<std::size_t>(z);
           const Cell& s = pattern.cell(m[0]->sCell[sx], m[1]->sCell[sy], m[2]->sCell[sz]);
           if (!(g0.cells[index] == s)) return false;
           if (!stretchable(s) && !(m[0]->whole[sx] && m[1]->whole[sy] && m[2]->whole[sz])) return false;
@@ -175,8 +163,12 @@ void extractManual(Hierarchy& h, Block& g0, const WorldBox& box, const glm::dvec
             for (std::size_t i = 0; i < (*m)[0]->sCell.size(); ++i)
               claimed[g0.cellIndex(x + static_cast<int>(i), y + static_cast<int>(j), z + static_cast<int>(k))] = true;
       }
+  return places;
+}
 
-  const BlockId target = h.addBlock(pattern);
+// Every cell of every place redirects to S (block `target`) with the offset of its own corner
+// inside S; one record per distinct offset.
+void redirectPlaces(Block& g0, BlockId target, const std::vector<Place>& places) {
   std::map<std::array<std::int64_t, 3>, std::uint32_t> records;  // offset (units) -> record index
   for (const Place& p : places) {
     const auto& [mx, my, mz] = p.map;
@@ -186,11 +178,44 @@ void extractManual(Hierarchy& h, Block& g0, const WorldBox& box, const glm::dvec
           const std::array<std::int64_t, 3> pos{mx->posUnits[i], my->posUnits[j], mz->posUnits[k]};
           auto [it, added] = records.try_emplace(pos, static_cast<std::uint32_t>(g0.redirections.size()));
           if (added)
-            g0.redirections.push_back(
-                Redirection{target, -glm::dvec3(toMetres(pos[0]), toMetres(pos[1]), toMetres(pos[2])), Rotation{}, {false, false, false}});
-          g0.cell(p.at[0] + static_cast<int>(i), p.at[1] + static_cast<int>(j), p.at[2] + static_cast<int>(k)) = Cell::redirect(it->second);
+            g0.redirections.push_back(Redirection{target,
+                                                  -glm::dvec3(toMetres(pos[0]), toMetres(pos[1]), toMetres(pos[2])),
+                                                  Rotation{},
+                                                  {false, false, false}});
+          g0.cell(p.at[0] + static_cast<int>(i), p.at[1] + static_cast<int>(j), p.at[2] + static_cast<int>(k)) =
+              Cell::redirect(it->second);
         }
   }
+}
+
+}  // namespace
+
+// The paper's user-selected block: the cells the box covers, simplified (neighbour layers holding
+// the same boxes and empty cells merge, so boundaries that only other parts of g0 needed go), become
+// block S. Every place of g0 whose cells can be grouped along each axis to match S's widths (within
+// the tolerance; groupAxis) and whose cells all equal the S cell they fall in redirects to S, each
+// cell with the offset of its own corner inside S; a cell that is part of a group shows only its
+// part of the S cell, so only boxes and empty S cells (which look the same however they are cut)
+// may be grouped. One record per distinct offset: places that match cell for cell share records,
+// so later repeats of the places are identical and the automatic search can tile them.
+void extractManual(Hierarchy& h, Block& g0, const WorldBox& box, const glm::dvec3& originM, double tolerance,
+                   BlockStats& stats) {
+  const auto range = cellRange(g0, box, originM);
+  if (!range) return;
+  const auto [lo, hi] = *range;
+  const Block selected = subBlock(g0, lo, hi);
+  Block pattern = selected;
+  simplify(pattern);
+  // 1e-9 m absorbs rounding of differences of boundaries, so a tolerance of 0 matches equal widths.
+  const double slack = tolerance + 1e-9;
+  const auto pieces = piecesOf(pattern, selected);
+  std::array<std::vector<std::vector<AxisMap>>, 3> matches;  // per axis and start
+  for (int a = 0; a < 3; ++a)
+    for (int s = 0; s < g0.cellCount(a); ++s)
+      matches[static_cast<std::size_t>(a)].push_back(axisMatches(g0, a, s, pieces[static_cast<std::size_t>(a)], slack));
+  const std::vector<Place> places = findPlaces(g0, pattern, matches);
+  const BlockId target = h.addBlock(pattern);
+  redirectPlaces(g0, target, places);
   ExtractedBlock found;
   found.block = target;
   found.cells = {pattern.cellCount(0), pattern.cellCount(1), pattern.cellCount(2)};
