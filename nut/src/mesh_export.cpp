@@ -477,6 +477,72 @@ Result<WorldBox> contentBounds(const Hierarchy& h, const glm::dvec3& originM) {
   return **bounds;
 }
 
+namespace {
+
+// The MTL file: one material per HNI material, named m<index>.
+std::string mtlText(const std::vector<Material>& materials) {
+  std::string text = "# nut export-mesh materials: Kd = sRGB bytes / 255 (as stored), d = opacity / 255\n";
+  for (std::size_t m = 0; m < materials.size(); ++m) {
+    const Material& mat = materials[m];
+    text += "\nnewmtl m";
+    appendNumber(text, std::uint64_t{m});
+    text += "\nKd ";
+    appendNumber(text, mat.r / 255.0);
+    text += ' ';
+    appendNumber(text, mat.g / 255.0);
+    text += ' ';
+    appendNumber(text, mat.b / 255.0);
+    text += "\nd ";
+    appendNumber(text, mat.opacity / 255.0);
+    text += '\n';
+  }
+  return text;
+}
+
+// The OBJ file, written in pieces of about a megabyte: the vertices, then the triangles grouped
+// by material, in their order within each group.
+bool writeObjText(std::ofstream& out, const ExportedMesh& mesh, const std::string& mtlName) {
+  std::string text = "# nut export-mesh: world coordinates in metres\nmtllib " + mtlName + "\n";
+  const auto flushIfLarge = [&] {
+    if (text.size() < (1u << 20)) return true;
+    const bool ok = static_cast<bool>(out.write(text.data(), static_cast<std::streamsize>(text.size())));
+    text.clear();
+    return ok;
+  };
+  for (const dvec3& p : mesh.positions) {
+    text += "v ";
+    appendNumber(text, p.x);
+    text += ' ';
+    appendNumber(text, p.y);
+    text += ' ';
+    appendNumber(text, p.z);
+    text += '\n';
+    if (!flushIfLarge()) return false;
+  }
+  std::vector<std::size_t> order(mesh.triangles.size());
+  for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+  std::stable_sort(order.begin(), order.end(),
+                   [&](std::size_t a, std::size_t b) { return mesh.triangleMaterial[a] < mesh.triangleMaterial[b]; });
+  for (std::size_t i = 0; i < order.size(); ++i) {
+    const std::uint16_t m = mesh.triangleMaterial[order[i]];
+    if (i == 0 || m != mesh.triangleMaterial[order[i - 1]]) {
+      text += "usemtl m";
+      appendNumber(text, std::uint64_t{m});
+      text += '\n';
+    }
+    text += 'f';
+    for (std::uint32_t v : mesh.triangles[order[i]]) {
+      text += ' ';
+      appendNumber(text, std::uint64_t{v} + 1);  // OBJ indices start at 1
+    }
+    text += '\n';
+    if (!flushIfLarge()) return false;
+  }
+  return static_cast<bool>(out.write(text.data(), static_cast<std::streamsize>(text.size())));
+}
+
+}  // namespace
+
 Status writeObj(const std::string& objPath, const ExportedMesh& mesh, const std::vector<Material>& materials) {
   for (std::uint16_t m : mesh.triangleMaterial)
     if (m >= materials.size())
@@ -485,67 +551,14 @@ Status writeObj(const std::string& objPath, const ExportedMesh& mesh, const std:
   const std::filesystem::path obj(objPath);
   const std::filesystem::path mtl = std::filesystem::path(obj).replace_extension(".mtl");
   if (mtl == obj) return Error{objPath + ": the OBJ file needs a name other than its MTL file's"};
-
+  // Both files are written to temporaries first and renamed into place only when both are whole.
   auto mtlTemporary = writeTemporary(mtl, [&](std::ofstream& out) {
-    std::string text = "# nut export-mesh materials: Kd = sRGB bytes / 255 (as stored), d = opacity / 255\n";
-    for (std::size_t m = 0; m < materials.size(); ++m) {
-      const Material& mat = materials[m];
-      text += "\nnewmtl m";
-      appendNumber(text, std::uint64_t{m});
-      text += "\nKd ";
-      appendNumber(text, mat.r / 255.0);
-      text += ' ';
-      appendNumber(text, mat.g / 255.0);
-      text += ' ';
-      appendNumber(text, mat.b / 255.0);
-      text += "\nd ";
-      appendNumber(text, mat.opacity / 255.0);
-      text += '\n';
-    }
+    const std::string text = mtlText(materials);
     return static_cast<bool>(out.write(text.data(), static_cast<std::streamsize>(text.size())));
   });
   if (!mtlTemporary) return mtlTemporary.error();
-
-  auto objTemporary = writeTemporary(obj, [&](std::ofstream& out) {
-    std::string text = "# nut export-mesh: world coordinates in metres\nmtllib " + mtl.filename().string() + "\n";
-    const auto flushIfLarge = [&] {
-      if (text.size() < (1u << 20)) return true;
-      const bool ok = static_cast<bool>(out.write(text.data(), static_cast<std::streamsize>(text.size())));
-      text.clear();
-      return ok;
-    };
-    for (const dvec3& p : mesh.positions) {
-      text += "v ";
-      appendNumber(text, p.x);
-      text += ' ';
-      appendNumber(text, p.y);
-      text += ' ';
-      appendNumber(text, p.z);
-      text += '\n';
-      if (!flushIfLarge()) return false;
-    }
-    // Triangles grouped by material, in their order within each group.
-    std::vector<std::size_t> order(mesh.triangles.size());
-    for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
-    std::stable_sort(order.begin(), order.end(),
-                     [&](std::size_t a, std::size_t b) { return mesh.triangleMaterial[a] < mesh.triangleMaterial[b]; });
-    for (std::size_t i = 0; i < order.size(); ++i) {
-      const std::uint16_t m = mesh.triangleMaterial[order[i]];
-      if (i == 0 || m != mesh.triangleMaterial[order[i - 1]]) {
-        text += "usemtl m";
-        appendNumber(text, std::uint64_t{m});
-        text += '\n';
-      }
-      text += 'f';
-      for (std::uint32_t v : mesh.triangles[order[i]]) {
-        text += ' ';
-        appendNumber(text, std::uint64_t{v} + 1);  // OBJ indices start at 1
-      }
-      text += '\n';
-      if (!flushIfLarge()) return false;
-    }
-    return static_cast<bool>(out.write(text.data(), static_cast<std::streamsize>(text.size())));
-  });
+  auto objTemporary =
+      writeTemporary(obj, [&](std::ofstream& out) { return writeObjText(out, mesh, mtl.filename().string()); });
   std::error_code error;
   if (!objTemporary) {
     std::filesystem::remove(*mtlTemporary, error);
