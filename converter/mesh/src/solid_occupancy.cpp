@@ -252,17 +252,19 @@ void classifyColumn(Builder& builder, const LazyWinding& winding, const Sweep& s
 }  // namespace
 
 // Occupancy of every cell centre that fitWedges and fitQuadrics left (step 3 of solid.hpp), and
-// every cell's material hint (a wedge's or round piece's: its surface's). Each column of cells along the sweep axis s
-// is a line; its crossings with the faces are gathered and, moving along +s, a face whose normal points against the
-// line is an entry (+1) and one along it an exit (-1). Crossings at one position (the line through an edge or a vertex
-// shared by several faces) count once per direction, so an edge is never counted twice. On a closed surface
-// (MeshCheck::closedSurface), where the running count never drops below zero and ends at zero, the count is the winding
-// number itself. Any other column (it met faces turned the wrong way) and every column of an open surface is decided by
-// the generalized winding number, evaluated once per run of cells between two crossings: an open surface's winding
-// number is not a count of crossings, even on a line that crosses none of its open parts (walls standing on a base
-// plate make the room inside them solid; a line under a gable's overhanging roof crosses both pitches with air between
-// them). The crossings of a part of a building (SolidOptions::enclosing) are those of the whole building's surface,
-// whose winding number decides the cells.
+// every cell's material hint (a wedge's or round piece's: its surface's). Each column of cells
+// along the sweep axis s is a line; its crossings with the faces are gathered and, moving along +s,
+// a face whose normal points against the line is an entry (+1) and one along it an exit (-1).
+// Crossings at one position (the line through an edge or a vertex shared by several faces) count
+// once per direction, so an edge is never counted twice. On a closed surface
+// (MeshCheck::closedSurface), where the running count never drops below zero and ends at zero, the
+// count is the winding number itself. Any other column (it met faces turned the wrong way) and
+// every column of an open surface is decided by the generalized winding number, evaluated once per
+// run of cells between two crossings: an open surface's winding number is not a count of crossings,
+// even on a line that crosses none of its open parts (walls standing on a base plate make the room
+// inside them solid; a line under a gable's overhanging roof crosses both pitches with air between
+// them). The crossings of a part of a building (SolidOptions::enclosing) are those of the whole
+// building's surface, whose winding number decides the cells.
 void Builder::classify(const LazyWinding& winding) {
   const Sweep sweep = sweepOf(*this);
   stats.sweepAxis = sweep.s;
