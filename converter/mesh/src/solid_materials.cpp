@@ -486,6 +486,100 @@ SharedSubBlock shareTurned(std::vector<Block>& subBlocks, Block s) {
   return {static_cast<BlockId>(subBlocks.size() - 1), 0, glm::dvec3(0.0)};
 }
 
+// What the shares decide: each cell's material (of largest area among its shares; the hint where
+// it has none), and per quadric piece shown by a sub-block, the area of each material per layer
+// of its box (layer * materials + material; empty when its cells have no shares).
+struct MaterialChoice {
+  std::vector<std::uint16_t> cell;
+  std::vector<std::vector<double>> pieceLayerArea;
+};
+
+MaterialChoice chooseMaterials(const Builder& b, const std::vector<Builder::Share>& shares) {
+  MaterialChoice choice{b.hint, std::vector<std::vector<double>>(b.quadrics.size())};
+  std::vector<double> materialArea(b.mesh.materials.size(), 0.0);
+  for (std::size_t i = 0; i < shares.size();) {
+    std::size_t j = i;
+    std::fill(materialArea.begin(), materialArea.end(), 0.0);
+    while (j < shares.size() && shares[j].cell == shares[i].cell) {
+      materialArea[shares[j].material] += shares[j].area;
+      ++j;
+    }
+    choice.cell[shares[i].cell] =
+        static_cast<std::uint16_t>(std::max_element(materialArea.begin(), materialArea.end()) - materialArea.begin());
+    if (const int piece = b.subPiece[shares[i].cell]; piece >= 0) {
+      const QuadricPiece& q = b.quadrics[static_cast<std::size_t>(piece)];
+      auto& area = choice.pieceLayerArea[static_cast<std::size_t>(piece)];
+      area.resize(q.layers.size() * materialArea.size(), 0.0);
+      const std::size_t k = q.layerOf(b.cellAt(shares[i].cell)[static_cast<std::size_t>(q.e)]);
+      for (std::size_t m = 0; m < materialArea.size(); ++m) area[k * materialArea.size() + m] += materialArea[m];
+    }
+    i = j;
+  }
+  return choice;
+}
+
+// S of a quarter-round piece: one cell across, its box's layers along e, each layer in the
+// material of largest area over its cells' shares (the piece's own without any). Layers all alike
+// (the usual case) make S one cell tall: every cell of a column of the box then shows S from its
+// bottom, so the column shares one record and its cells are equal (`uniform`).
+Block subBlockOf(Builder& b, const QuadricPiece& q, const std::vector<double>& layerArea, bool& uniform) {
+  const std::size_t materialCount = b.mesh.materials.size();
+  std::vector<Cell> layers;
+  for (std::size_t k = 0; k < q.layers.size(); ++k) {
+    std::uint16_t material = q.material;
+    if (!layerArea.empty()) {
+      const auto first = layerArea.begin() + static_cast<std::ptrdiff_t>(k * materialCount);
+      const auto best = std::max_element(first, first + static_cast<std::ptrdiff_t>(materialCount));
+      if (*best > 0) material = static_cast<std::uint16_t>(best - first);
+    }
+    layers.push_back(Cell::solidCell(Solid{static_cast<std::uint8_t>(q.layers[k])}, material));
+  }
+  uniform = std::all_of(layers.begin(), layers.end(), [&](const Cell& c) { return c == layers.front(); });
+  if (uniform) layers.resize(1);
+  Block s;
+  for (std::size_t a = 0; a < 3; ++a) {
+    const auto& B = b.bounds[a];
+    const double base = B[static_cast<std::size_t>(q.lo[a])];
+    const bool layered = static_cast<int>(a) == q.e && !uniform;
+    for (int k = q.lo[a]; k <= q.hi[a]; ++k)
+      if (layered || k == q.lo[a] || k == q.hi[a])
+        s.boundsM[a].push_back(snapToUnits(B[static_cast<std::size_t>(k)] - base));
+  }
+  s.cells = layers;
+  for (const Cell& c : layers)
+    (q.planar     ? b.stats.pyramidCells
+     : q.octant() ? b.stats.sphereOctantCells
+                  : b.stats.quadricCells) += c.solid.index != 0;
+  b.stats.solidCells += static_cast<long long>(layers.size());
+  return s;
+}
+
+// Every cell of the piece's box redirects to S, offset by minus its place in S so that it shows
+// its part of S (clipped by the cell), also where the arc does not pass: cells placing S at the
+// same place merge when the boundaries between them go, and the block stage turns those left on
+// one side of the arc into plain cells (blocks.cpp).
+void redirectToSubBlock(const Builder& b, Block& block, const QuadricPiece& q, const SharedSubBlock& shown,
+                        bool uniform) {
+  const auto firstRecord = static_cast<std::ptrdiff_t>(block.redirections.size());
+  std::array<int, 3> c{};
+  for (c[2] = q.lo[2]; c[2] < q.hi[2]; ++c[2])
+    for (c[1] = q.lo[1]; c[1] < q.hi[1]; ++c[1])
+      for (c[0] = q.lo[0]; c[0] < q.hi[0]; ++c[0]) {
+        glm::dvec3 offset(0.0);
+        for (std::size_t a = 0; a < 3; ++a)
+          if (static_cast<int>(a) != q.e || !uniform || q.octant())
+            offset[static_cast<int>(a)] = -snapToUnits(b.bounds[a][static_cast<std::size_t>(c[a])] -
+                                                       b.bounds[a][static_cast<std::size_t>(q.lo[a])]);
+        const Redirection r{shown.target,
+                            offset + shown.offsetM,
+                            Rotation{static_cast<std::uint8_t>(shown.cube), 0},
+                            {false, false, false}};
+        const auto shared = std::find(block.redirections.begin() + firstRecord, block.redirections.end(), r);
+        block.cells[b.index(c)] = Cell::redirect(static_cast<std::uint32_t>(shared - block.redirections.begin()));
+        if (shared == block.redirections.end()) block.redirections.push_back(r);
+      }
+}
+
 }  // namespace
 
 // Each cell takes the material of largest area among its shares. A quarter-round piece shown by
@@ -495,86 +589,18 @@ SharedSubBlock shareTurned(std::vector<Block>& subBlocks, Block s) {
 // offset by minus their place in S so that each shows its part of S (clipped by the cell).
 void Builder::assignMaterials(Block& block, std::vector<Block>& subBlocks, const std::vector<Share>& shares) {
   block.cells.assign(shape.size(), Cell::empty());
-  std::vector<std::uint16_t> chosen(hint);
-  std::vector<double> materialArea(mesh.materials.size(), 0.0);
-  std::vector<std::vector<double>> layerArea(quadrics.size());  // per piece: layer * materials + material
-  for (std::size_t i = 0; i < shares.size();) {
-    std::size_t j = i;
-    std::fill(materialArea.begin(), materialArea.end(), 0.0);
-    while (j < shares.size() && shares[j].cell == shares[i].cell) {
-      materialArea[shares[j].material] += shares[j].area;
-      ++j;
-    }
-    chosen[shares[i].cell] =
-        static_cast<std::uint16_t>(std::max_element(materialArea.begin(), materialArea.end()) - materialArea.begin());
-    if (const int piece = subPiece[shares[i].cell]; piece >= 0) {
-      const QuadricPiece& q = quadrics[static_cast<std::size_t>(piece)];
-      auto& area = layerArea[static_cast<std::size_t>(piece)];
-      area.resize(q.layers.size() * materialArea.size(), 0.0);
-      const std::size_t k = q.layerOf(cellAt(shares[i].cell)[static_cast<std::size_t>(q.e)]);
-      for (std::size_t m = 0; m < materialArea.size(); ++m) area[k * materialArea.size() + m] += materialArea[m];
-    }
-    i = j;
-  }
+  const MaterialChoice choice = chooseMaterials(*this, shares);
   subBlocks.clear();
   for (std::size_t piece = 0; piece < quadrics.size(); ++piece) {
     const QuadricPiece& q = quadrics[piece];
     if (!q.represented || !q.subBlock) continue;
-    const auto& area = layerArea[piece];
-    std::vector<Cell> layers;
-    for (std::size_t k = 0; k < q.layers.size(); ++k) {
-      std::uint16_t material = q.material;
-      if (!area.empty()) {
-        const auto first = area.begin() + static_cast<std::ptrdiff_t>(k * mesh.materials.size());
-        const auto best = std::max_element(first, first + static_cast<std::ptrdiff_t>(mesh.materials.size()));
-        if (*best > 0) material = static_cast<std::uint16_t>(best - first);
-      }
-      layers.push_back(Cell::solidCell(Solid{static_cast<std::uint8_t>(q.layers[k])}, material));
-    }
-    // Layers all alike (the usual case) make S one cell tall: every cell of a column of the box
-    // then shows S from its bottom, so the column shares one record and its cells are equal.
-    const bool uniform = std::all_of(layers.begin(), layers.end(), [&](const Cell& c) { return c == layers.front(); });
-    if (uniform) layers.resize(1);
-    Block s;
-    for (int a = 0; a < 3; ++a) {
-      const auto& B = bounds[static_cast<std::size_t>(a)];
-      const double base = B[static_cast<std::size_t>(q.lo[static_cast<std::size_t>(a)])];
-      const bool layered = a == q.e && !uniform;
-      for (int k = q.lo[static_cast<std::size_t>(a)]; k <= q.hi[static_cast<std::size_t>(a)]; ++k)
-        if (layered || k == q.lo[static_cast<std::size_t>(a)] || k == q.hi[static_cast<std::size_t>(a)])
-          s.boundsM[static_cast<std::size_t>(a)].push_back(snapToUnits(B[static_cast<std::size_t>(k)] - base));
-    }
-    s.cells = layers;
-    for (const Cell& c : layers)
-      (q.planar ? stats.pyramidCells : q.octant() ? stats.sphereOctantCells : stats.quadricCells) += c.solid.index != 0;
-    stats.solidCells += static_cast<long long>(layers.size());
-    const SharedSubBlock shown = shareTurned(subBlocks, std::move(s));
-    const auto firstRecord = static_cast<std::ptrdiff_t>(block.redirections.size());
-    std::array<int, 3> c{};
-    for (c[2] = q.lo[2]; c[2] < q.hi[2]; ++c[2])
-      for (c[1] = q.lo[1]; c[1] < q.hi[1]; ++c[1])
-        for (c[0] = q.lo[0]; c[0] < q.hi[0]; ++c[0]) {
-          // Every cell of the box shows its part of S, also where the arc does not pass: cells
-          // placing S at the same place merge when the boundaries between them go, and the block
-          // stage turns those left on one side of the arc into plain cells (blocks.cpp).
-          glm::dvec3 offset(0.0);
-          for (int a = 0; a < 3; ++a)
-            if (a != q.e || !uniform || q.octant())
-              offset[a] = -snapToUnits(
-                  bounds[static_cast<std::size_t>(a)][static_cast<std::size_t>(c[static_cast<std::size_t>(a)])] -
-                  bounds[static_cast<std::size_t>(a)][static_cast<std::size_t>(q.lo[static_cast<std::size_t>(a)])]);
-          const Redirection r{shown.target,
-                              offset + shown.offsetM,
-                              Rotation{static_cast<std::uint8_t>(shown.cube), 0},
-                              {false, false, false}};
-          const auto shared = std::find(block.redirections.begin() + firstRecord, block.redirections.end(), r);
-          block.cells[index(c)] = Cell::redirect(static_cast<std::uint32_t>(shared - block.redirections.begin()));
-          if (shared == block.redirections.end()) block.redirections.push_back(r);
-        }
+    bool uniform = false;
+    Block s = subBlockOf(*this, q, choice.pieceLayerArea[piece], uniform);
+    redirectToSubBlock(*this, block, q, shareTurned(subBlocks, std::move(s)), uniform);
   }
   for (std::size_t id = 0; id < shape.size(); ++id) {
     if (shape[id] < 0 || subPiece[id] >= 0) continue;
-    block.cells[id] = Cell::solidCell(Solid{static_cast<std::uint8_t>(shape[id])}, chosen[id]);
+    block.cells[id] = Cell::solidCell(Solid{static_cast<std::uint8_t>(shape[id])}, choice.cell[id]);
     ++stats.solidCells;
     const SolidGroup group = solidGroup(Solid{static_cast<std::uint8_t>(shape[id])});
     stats.wedgeCells += group == SolidGroup::Wedge;
