@@ -130,7 +130,7 @@ struct FaceAlongAxis {
 // A face's piece over the cells (i, j) of its plane.
 struct FacePiece {
   int i, j;
-  Polygon2 poly;
+  const Polygon2& poly;
   double area;                    // true area
   std::array<dvec3, 12> corners;  // on the face's plane
   double surfaceLo, surfaceHi;    // where along the axis the piece is
@@ -153,17 +153,22 @@ void forEachPiece(const Builder& b, const FaceAlongAxis& face, F&& f) {
       if (strip.n < 3) continue;
     }
     for (int j = j0; j <= j1; ++j) {
-      FacePiece piece{
-          i, j, strip, 0, {}, std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity()};
+      Polygon2 poly = strip;
       if (j0 != j1) {
-        clipAxis(piece.poly, 1, V[static_cast<std::size_t>(j)], false);
-        clipAxis(piece.poly, 1, V[static_cast<std::size_t>(j + 1)], true);
-        if (piece.poly.n < 3) continue;
+        clipAxis(poly, 1, V[static_cast<std::size_t>(j)], false);
+        clipAxis(poly, 1, V[static_cast<std::size_t>(j + 1)], true);
+        if (poly.n < 3) continue;
       }
-      piece.area = polygonArea(piece.poly) * face.trueArea;
-      if (piece.area <= kMinPieceAreaM2) continue;  // a clipping sliver, not a piece of surface
-      piece.corners = face.lift(piece.poly);
-      for (int m = 0; m < piece.poly.n; ++m) {
+      const double area = polygonArea(poly) * face.trueArea;
+      if (area <= kMinPieceAreaM2) continue;  // a clipping sliver, not a piece of surface
+      FacePiece piece{i,
+                      j,
+                      poly,
+                      area,
+                      face.lift(poly),
+                      std::numeric_limits<double>::infinity(),
+                      -std::numeric_limits<double>::infinity()};
+      for (int m = 0; m < poly.n; ++m) {
         piece.surfaceLo = std::min(piece.surfaceLo, piece.corners[static_cast<std::size_t>(m)][face.a]);
         piece.surfaceHi = std::max(piece.surfaceHi, piece.corners[static_cast<std::size_t>(m)][face.a]);
       }
@@ -189,13 +194,18 @@ Sides sidesAt(const Builder& b, const FaceAlongAxis& face, const FacePiece& piec
   lo[static_cast<std::size_t>(face.v)] = hi[static_cast<std::size_t>(face.v)] = piece.j;
   lo[a] = k - 1;
   hi[a] = k;
-  std::array<dvec3, 12> onBoundary = piece.corners;
-  for (int m = 0; m < piece.poly.n; ++m)
-    onBoundary[static_cast<std::size_t>(m)][face.a] = b.bounds[a][static_cast<std::size_t>(k)];
-  const std::span<const dvec3> points(onBoundary.data(), static_cast<std::size_t>(piece.poly.n));
+  // The piece's corners moved onto the boundary matter only to a cell showing a sub-block; they
+  // are made for those alone.
+  const auto solid = [&](std::size_t cell) {
+    if (b.subPiece[cell] < 0) return b.shape[cell] >= 0;
+    std::array<dvec3, 12> onBoundary = piece.corners;
+    for (int m = 0; m < piece.poly.n; ++m)
+      onBoundary[static_cast<std::size_t>(m)][face.a] = b.bounds[a][static_cast<std::size_t>(k)];
+    return b.solidAt(cell, std::span<const dvec3>(onBoundary.data(), static_cast<std::size_t>(piece.poly.n)));
+  };
   Sides s{kNoCell, kNoCell, false, false};
-  if (k > 0) s.lo = b.index(lo), s.solidLo = b.solidAt(s.lo, points);
-  if (k < b.n[a]) s.hi = b.index(hi), s.solidHi = b.solidAt(s.hi, points);
+  if (k > 0) s.lo = b.index(lo), s.solidLo = solid(s.lo);
+  if (k < b.n[a]) s.hi = b.index(hi), s.solidHi = solid(s.hi);
   return s;
 }
 
