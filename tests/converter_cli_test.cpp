@@ -6,11 +6,9 @@
 #include <gtest/gtest.h>
 
 #include <cstdio>
-#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
-#include <sstream>
 #include <string>
 
 #include <nlohmann/json.hpp>
@@ -20,6 +18,7 @@
 #include <nut/hni.hpp>
 #include <nut/png_io.hpp>
 
+#include "cli_support.hpp"
 #include "converter_support.hpp"
 
 namespace nut::converter {
@@ -27,25 +26,9 @@ namespace {
 
 namespace fs = std::filesystem;
 
-struct CliRun {
-  int exitCode = -1;
-  std::string stderrText;
-};
+using ::nut::testing::CliRun;
 
-// Runs `nut <args>` with stderr captured (one file per test: ctest runs the tests in parallel).
-CliRun nut(const std::string& args) {
-  const fs::path err = fs::path(testing::outputDir("converter_cli")) /
-                       (std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()) + ".stderr.txt");
-  const std::string command = std::string(NUT_CLI_PATH) + " " + args + " 2> " + err.string();
-  const int status = std::system(command.c_str());
-  CliRun r;
-  r.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  std::ifstream in(err);
-  std::stringstream text;
-  text << in.rdbuf();
-  r.stderrText = text.str();
-  return r;
-}
+CliRun nut(const std::string& args) { return ::nut::testing::runNut(args, "converter_cli"); }
 
 std::string out(const std::string& name) { return (fs::path(testing::outputDir("converter_cli")) / name).string(); }
 std::string sample(const std::string& name) { return std::string(NUT_SOURCE_DIR) + "/samples/obj/" + name; }
@@ -304,13 +287,9 @@ TEST(InfoCli, ListsBlocksAndWhatEachKindOfRecordCosts) {
 }
 
 TEST(ConvertCli, HelpHasAnExample) {
-  const std::string file = out("help.stdout.txt");
-  const int status = std::system((std::string(NUT_CLI_PATH) + " convert --help > " + file).c_str());
-  ASSERT_EQ(WEXITSTATUS(status), 0);
-  std::ifstream in(file);
-  std::stringstream text;
-  text << in.rdbuf();
-  EXPECT_NE(text.str().find("nut convert samples/obj/"), std::string::npos);
+  const CliRun r = nut("convert --help");
+  ASSERT_EQ(r.exitCode, 0) << r.stderrText;
+  EXPECT_NE(r.stdoutText.find("nut convert samples/obj/"), std::string::npos) << r.stdoutText;
 }
 
 }  // namespace
