@@ -1,5 +1,6 @@
 // compile / decode round trips on seeded random hierarchies, and the metadata error bound measured
-// through HniView on every boundary of every block, the way the shader reads the image.
+// through HniView on every boundary of every block, the way the shader reads the image; and every
+// hierarchy rule and format limit compile() enforces, each refused naming where.
 #include <gtest/gtest.h>
 
 #include <nut/hni.hpp>
@@ -157,6 +158,105 @@ TEST(HniCompile, NamesTheBlockAndAxisThatBreaksALimit) {
   ASSERT_FALSE(image.ok());
   EXPECT_NE(image.error().message.find("cycle"), std::string::npos) << image.error().message;
 }
+
+// Every rule a hierarchy built through the API must keep (checkHierarchy) and every limit of the
+// format compile() enforces: each broken on its own in a valid two-block hierarchy, and refused
+// with a message that names the place.
+struct BrokenHierarchy {
+  const char* name;
+  void (*breakIt)(Hierarchy&);
+  const char* message;
+};
+
+class HniCompileRefuses : public ::testing::TestWithParam<BrokenHierarchy> {};
+
+// Block 0 (2 x 1 x 1 cells) holds a box of material 0 and a redirection to block 1 (one cell).
+Hierarchy twoBlocks() {
+  Hierarchy h;
+  h.materials.push_back({200, 100, 50});
+  h.addBlock(Block::fromSizes({{{1.0, 1.0}, {1.0}, {1.0}}}));
+  h.addBlock(Block::fromSizes({{{1.0}, {1.0}, {1.0}}}));
+  h.blocks[0].cells[0] = Cell::box(0);
+  h.blocks[0].redirections.push_back({1});
+  h.blocks[0].cells[1] = Cell::redirect(0);
+  h.blocks[1].cells[0] = Cell::box(0);
+  return h;
+}
+
+TEST(HniCompile, TheValidTwoBlockHierarchyCompiles) { EXPECT_TRUE(compile(twoBlocks()).ok()); }
+
+TEST_P(HniCompileRefuses, NamingWhere) {
+  Hierarchy h = twoBlocks();
+  GetParam().breakIt(h);
+  auto image = compile(h);
+  ASSERT_FALSE(image.ok());
+  EXPECT_NE(image.error().message.find(GetParam().message), std::string::npos) << image.error().message;
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Rules, HniCompileRefuses,
+    ::testing::Values(
+        BrokenHierarchy{"NoBlocks", [](Hierarchy& h) { h.blocks.clear(); }, "hierarchy has no blocks"},
+        BrokenHierarchy{"Root", [](Hierarchy& h) { h.root = 2; }, "root block 2 out of range (2 blocks)"},
+        BrokenHierarchy{"NoCells", [](Hierarchy& h) { h.blocks[1].boundsM[2] = {0.0}; }, "block 1 axis z: no cells"},
+        BrokenHierarchy{"FirstBoundary",
+                        [](Hierarchy& h) {
+                          h.blocks[1].boundsM[0] = {0.5, 1.0};
+                        },
+                        "block 1 axis x: first boundary must be 0"},
+        BrokenHierarchy{"NotIncreasing",
+                        [](Hierarchy& h) {
+                          h.blocks[0].boundsM[0] = {0.0, 1.0, 1.0};
+                        },
+                        "block 0 axis x: boundary 2 is not finite and greater than the previous one"},
+        BrokenHierarchy{"NotFinite",
+                        [](Hierarchy& h) {
+                          h.blocks[0].boundsM[1] = {0.0, std::nan("")};
+                        },
+                        "block 0 axis y: boundary 1 is not finite"},
+        BrokenHierarchy{"CellCount", [](Hierarchy& h) { h.blocks[0].cells.pop_back(); },
+                        "block 0: 1 cells, expected 2"},
+        BrokenHierarchy{"Solid", [](Hierarchy& h) { h.blocks[1].cells[0].solid.index = kSolidCount; }, "solid 69"},
+        BrokenHierarchy{"Material", [](Hierarchy& h) { h.blocks[1].cells[0].material = 1; },
+                        "material 1 out of range (1 materials)"},
+        BrokenHierarchy{"Texture", [](Hierarchy& h) { h.blocks[1].cells[0].texture = 1; },
+                        "texture 1 out of range (0 textures)"},
+        BrokenHierarchy{"Redirection", [](Hierarchy& h) { h.blocks[0].cells[1].redirection = 1; },
+                        "redirection 1 out of range"},
+        BrokenHierarchy{"Target", [](Hierarchy& h) { h.blocks[0].redirections[0].target = 5; },
+                        "block 0 redirection 0: target block out of range"},
+        BrokenHierarchy{"CubeRotation", [](Hierarchy& h) { h.blocks[0].redirections[0].rotation.cube = 24; },
+                        "block 0 redirection 0: cube rotation out of range"},
+        BrokenHierarchy{
+            "OffsetNotFinite",
+            [](Hierarchy& h) { h.blocks[0].redirections[0].offsetM.y = std::numeric_limits<double>::infinity(); },
+            "block 0 redirection 0: offset is not finite"},
+        BrokenHierarchy{"NarrowerThanAMillimetre",
+                        [](Hierarchy& h) {
+                          h.blocks[0].boundsM[0] = {0.0, 0.0004, 1.0};
+                        },
+                        "block 0 axis x: cell 0 is narrower than 1 mm"},
+        BrokenHierarchy{"Longer",
+                        [](Hierarchy& h) {
+                          h.blocks[1].boundsM[2] = {0.0, 20000.0};
+                        },
+                        "block 1 axis z size: 20000.000000 m is outside the encodable range"},
+        BrokenHierarchy{"DataComponent",
+                        [](Hierarchy& h) {
+                          std::vector<double> sizes(65, 0.01);
+                          h.blocks[1] = Block::fromSizes({{sizes, {1.0}, sizes}});  // 65 x 65 = 4225 px wide
+                        },
+                        "block 1: data component 4225 px wide (n_x * n_z) exceeds 4096"},
+        BrokenHierarchy{"Materials", [](Hierarchy& h) { h.materials.resize(65537); },
+                        "65537 materials exceed the limit of 65536"},
+        BrokenHierarchy{"TextureInfos", [](Hierarchy& h) { h.textures.resize(256); },
+                        "256 texture infos exceed the limit of 255"},
+        BrokenHierarchy{"TextureOffset",
+                        [](Hierarchy& h) {
+                          h.textures.push_back({{0.0, 0.0, -9000.0}, 1});
+                        },
+                        "texture info 0: offset -9000.000000 m is outside"}),
+    [](const ::testing::TestParamInfo<BrokenHierarchy>& p) { return std::string(p.param.name); });
 
 TEST(HniCompile, RootFileRecordAndMagic) {
   const Hierarchy h = testing::randomHierarchy(42);
