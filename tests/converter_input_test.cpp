@@ -689,5 +689,36 @@ TEST(City, ManifestRoundTripsAndRejectsPathsOutside) {
   EXPECT_EQ(safeFileStem(".hidden"), "_.hidden");
 }
 
+// Every rule of docs/CITY.md's schema, each broken alone in a one-building manifest, is refused
+// naming the file, the building and the field.
+TEST(City, EachBrokenFieldIsNamed) {
+  const std::string good = R"("name": "a", "hni": "a.png", "position_m": [1, 2, 3])";
+  const auto manifest = [](const std::string& version, const std::string& building) {
+    return R"({"format": "nut-city", "version": )" + version + R"(, "buildings": [{)" + building + "}]}";
+  };
+  const std::pair<std::string, std::string> cases[] = {
+      {R"({"format": "gltf", "version": 1, "buildings": []})", "not a nut city manifest"},
+      {manifest("2", good), "unsupported version (this reader knows version 1)"},
+      {R"({"format": "nut-city", "version": 1, "buildings": {}})", "\"buildings\" must be an array"},
+      {R"({"format": "nut-city", "version": 1, "buildings": [7]})", "building 0: not an object"},
+      {manifest("1", R"("hni": "a.png", "position_m": [1, 2, 3])"), "building 0: \"name\" must be a string"},
+      {manifest("1", good + R"(, "complement": "/tmp/a.obj")"),
+       "building 0 (a): \"complement\" must be a relative path inside the manifest's folder"},
+      {manifest("1", R"("name": "a", "hni": "a.png", "position_m": [1, 2])"),
+       "building 0 (a): \"position_m\" must be three numbers"},
+      {manifest("1", R"("name": "a", "hni": "a.png", "position_m": [1, "2", 3])"),
+       "building 0 (a): \"position_m\" must be three finite numbers"},
+      {manifest("1", good + R"(, "yaw_deg": "north")"), "building 0 (a): \"yaw_deg\" must be a finite number"},
+  };
+  ASSERT_TRUE(readCityJson(writeFile("good-city.json", manifest("1", good))).ok());
+  for (const auto& [text, message] : cases) {
+    const std::string path = writeFile("broken-city.json", text);
+    auto city = readCityJson(path);
+    ASSERT_FALSE(city.ok()) << text;
+    EXPECT_EQ(city.error().message.rfind(path + ": ", 0), 0u) << city.error().message;
+    EXPECT_NE(city.error().message.find(message), std::string::npos) << city.error().message;
+  }
+}
+
 }  // namespace
 }  // namespace nut::converter
