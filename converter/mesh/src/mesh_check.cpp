@@ -139,7 +139,10 @@ std::vector<std::uint8_t> smallPiecesFacingIn(const Welded& w, std::vector<std::
     if (!whole) whole.emplace(w.points, w.triangles);
     std::vector<std::array<std::uint32_t, 3>> own;
     for (std::uint32_t f : pieces[p]) own.push_back(w.triangles[f]);
-    const auto rest = [&](const dvec3& q) { return (*whole)(q)-exactWindingNumber(w.points, own, q); };
+    const auto rest = [&](const dvec3& q) {
+      const double all = (*whole)(q);
+      return all - exactWindingNumber(w.points, own, q);
+    };
     const double distance = std::clamp(0.5 * std::sqrt(pieceArea[p]), kFarSampleMinM, kFarSampleMaxM);
     double behindLessFront = 0;
     forLargestFaces(w, pieces[p], [&](const dvec3& centroid, const dvec3& normal, double area) {
