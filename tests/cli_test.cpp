@@ -233,12 +233,19 @@ TEST(InfoCli, TextSummaryAndBlockListMatchTheDecode) {
   expectOneErrorLine(nut("info " + out("missing.png")), 2, "missing.png");
 }
 
-TEST(MainCli, NoCommandIsAUsageErrorAndHelpListsTheCommands) {
+TEST(MainCli, NoCommandIsAUsageErrorAndEveryHelpHasAnExample) {
   expectOneErrorLine(nut(""), 1, "see nut --help");
   const CliRun help = nut("--help");
   EXPECT_EQ(help.exitCode, 0);
-  for (const char* command : {"info", "validate", "render", "export-mesh", "render-mesh", "compare", "convert"})
+  for (const char* command : {"info", "validate", "render", "export-mesh", "render-mesh", "compare", "convert"}) {
     EXPECT_NE(help.stdoutText.find(std::string("  ") + command + " "), std::string::npos) << command;
+    // Every command's help ends with an example of itself.
+    const CliRun own = nut(std::string(command) + " --help");
+    EXPECT_EQ(own.exitCode, 0) << command;
+    const auto example = own.stdoutText.find("Example");
+    ASSERT_NE(example, std::string::npos) << command;
+    EXPECT_NE(own.stdoutText.find(std::string("nut ") + command + " ", example), std::string::npos) << command;
+  }
 }
 
 }  // namespace

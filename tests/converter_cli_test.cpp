@@ -286,11 +286,5 @@ TEST(InfoCli, ListsBlocksAndWhatEachKindOfRecordCosts) {
   EXPECT_LT(total, j.at("bytes_png").get<long long>());  // the file adds its chunks
 }
 
-TEST(ConvertCli, HelpHasAnExample) {
-  const CliRun r = nut("convert --help");
-  ASSERT_EQ(r.exitCode, 0) << r.stderrText;
-  EXPECT_NE(r.stdoutText.find("nut convert samples/obj/"), std::string::npos) << r.stdoutText;
-}
-
 }  // namespace
 }  // namespace nut::converter
