@@ -255,6 +255,17 @@ bool solidInPiece(const QuadricPiece& q, std::int8_t layer, const dvec3& x, doub
 
 namespace {
 
+// The boundary where the piece's box in cells starts (or, `high`, ends) along `axis`.
+double boxBound(const Builder& b, const QuadricPiece& q, int axis, bool high) {
+  const auto a = static_cast<std::size_t>(axis);
+  return b.bounds[a][static_cast<std::size_t>(high ? q.hi[a] : q.lo[a])];
+}
+
+// The cells the piece's box spans along `axis`.
+int cellsAlong(const QuadricPiece& q, int axis) {
+  return q.hi[static_cast<std::size_t>(axis)] - q.lo[static_cast<std::size_t>(axis)];
+}
+
 // A piece's box in cells: its extent along each axis snapped to the nearest cells. Returns
 // whether the boundaries there are within the tolerance of the piece's box.
 bool placeInCells(const Builder& b, QuadricPiece& q) {
@@ -272,13 +283,9 @@ bool placeInCells(const Builder& b, QuadricPiece& q) {
   q.hi[static_cast<std::size_t>(v)] = cellOf(V, vHi - tol) + 1;
   q.lo[static_cast<std::size_t>(e)] = cellOf(E, q.e0 + tol);
   q.hi[static_cast<std::size_t>(e)] = cellOf(E, q.e1 - tol) + 1;
-  const auto at = [&](int axis, bool high) {
-    const auto a = static_cast<std::size_t>(axis);
-    return b.bounds[a][static_cast<std::size_t>(high ? q.hi[a] : q.lo[a])];
-  };
-  return snappedWithin(at(u, false), uLo, tol) && snappedWithin(at(u, true), uHi, tol) &&
-         snappedWithin(at(v, false), vLo, tol) && snappedWithin(at(v, true), vHi, tol) &&
-         snappedWithin(at(e, false), q.e0, tol) && snappedWithin(at(e, true), q.e1, tol);
+  return snappedWithin(boxBound(b, q, u, false), uLo, tol) && snappedWithin(boxBound(b, q, u, true), uHi, tol) &&
+         snappedWithin(boxBound(b, q, v, false), vLo, tol) && snappedWithin(boxBound(b, q, v, true), vHi, tol) &&
+         snappedWithin(boxBound(b, q, e, false), q.e0, tol) && snappedWithin(boxBound(b, q, e, true), q.e1, tol);
 }
 
 // The solid each layer of the piece's box shows, by the winding number at a point well inside the
@@ -287,12 +294,9 @@ bool placeInCells(const Builder& b, QuadricPiece& q) {
 bool sampleLayers(const Builder& b, QuadricPiece& q, const LazyWinding& winding) {
   const int e = q.e, u = kU[e], v = kV[e];
   const auto& E = b.bounds[static_cast<std::size_t>(e)];
-  const auto at = [&](int axis, bool high) {
-    const auto a = static_cast<std::size_t>(axis);
-    return b.bounds[a][static_cast<std::size_t>(high ? q.hi[a] : q.lo[a])];
-  };
-  const double ua = at(u, false), ub = at(u, true), va = at(v, false), vb = at(v, true), ea = at(e, false),
-               eb = at(e, true);
+  const double ua = boxBound(b, q, u, false), ub = boxBound(b, q, u, true);
+  const double va = boxBound(b, q, v, false), vb = boxBound(b, q, v, true);
+  const double ea = boxBound(b, q, e, false), eb = boxBound(b, q, e, true);
   // A quarter cylinder: the box's edge on the axis, u = 1 (corner bit 0) when the arc lies below
   // the axis along u. A sphere octant or corner slope (e = z): the box's corner at the centre.
   const int orientation = q.octant() ? (q.quadrant[0] < 0 ? 1 : 0) + (q.quadrant[1] < 0 ? 2 : 0) + (q.eSign < 0 ? 4 : 0)
@@ -305,7 +309,7 @@ bool sampleLayers(const Builder& b, QuadricPiece& q, const LazyWinding& winding)
                                           : SolidGroup::InverseQuarterCylinder;
   const double axisU = q.quadrant[0] > 0 ? ua : ub, axisV = q.quadrant[1] > 0 ? va : vb, axisE = q.eSign > 0 ? ea : eb;
   q.layers.clear();
-  const int layerCount = q.octant() ? 1 : q.hi[static_cast<std::size_t>(e)] - q.lo[static_cast<std::size_t>(e)];
+  const int layerCount = q.octant() ? 1 : cellsAlong(q, e);
   for (int k = 0; k < layerCount; ++k) {
     std::array<bool, 2> in{};
     for (int h = 0; h < 2; ++h) {
@@ -383,10 +387,7 @@ bool Builder::fitQuadrics(const LazyWinding& winding) {
     q.subBlock = false;
     if (!q.represented) continue;
     bool ok = placeInCells(*this, q);
-    const auto cellsAlong = [&](int axis) {
-      return q.hi[static_cast<std::size_t>(axis)] - q.lo[static_cast<std::size_t>(axis)];
-    };
-    q.subBlock = cellsAlong(kU[q.e]) > 1 || cellsAlong(kV[q.e]) > 1 || (q.octant() && cellsAlong(q.e) > 1);
+    q.subBlock = cellsAlong(q, kU[q.e]) > 1 || cellsAlong(q, kV[q.e]) > 1 || (q.octant() && cellsAlong(q, q.e) > 1);
     if (ok) ok = sampleLayers(*this, q, winding);
     if (ok && q.subBlock) ok = subBlockFits(static_cast<int>(id), winding);
     if (!ok) {
