@@ -11,16 +11,20 @@
 namespace nut::testing {
 
 CliRun runNut(const std::string& args, const std::string& group) {
-  const std::filesystem::path dir = std::filesystem::path(NUT_TEST_OUTPUT_DIR) / group;
-  std::filesystem::create_directories(dir);
   const std::string test = ::testing::UnitTest::GetInstance()->current_test_info()->name();
-  const std::string out = (dir / (test + ".stdout.txt")).string(), err = (dir / (test + ".stderr.txt")).string();
+  const std::string out = outputPath(group, test + ".stdout.txt"), err = outputPath(group, test + ".stderr.txt");
   const int status = std::system((std::string(NUT_CLI_PATH) + " > " + out + " 2> " + err + " " + args).c_str());
   CliRun r;
   r.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
   r.stdoutText = fileText(out);
   r.stderrText = fileText(err);
   return r;
+}
+
+std::string outputPath(const std::string& group, const std::string& name) {
+  const std::filesystem::path dir = std::filesystem::path(NUT_TEST_OUTPUT_DIR) / group;
+  std::filesystem::create_directories(dir);
+  return (dir / name).string();
 }
 
 std::string fileText(const std::string& path) {

@@ -15,6 +15,9 @@ struct CliRun {
 // comes later in the command line, so it wins over the capture.
 CliRun runNut(const std::string& args, const std::string& group);
 
+// The path of `name` in the test output folder `group` (created).
+std::string outputPath(const std::string& group, const std::string& name);
+
 // A file's whole text ("" when it cannot be read).
 std::string fileText(const std::string& path);
 

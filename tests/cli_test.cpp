@@ -29,11 +29,7 @@ using testing::CliRun;
 
 CliRun nut(const std::string& args) { return testing::runNut(args, "cli"); }
 
-std::string out(const std::string& name) {
-  const fs::path dir = fs::path(NUT_TEST_OUTPUT_DIR) / "cli";
-  fs::create_directories(dir);
-  return (dir / name).string();
-}
+std::string out(const std::string& name) { return testing::outputPath("cli", name); }
 std::string source(const std::string& path) { return std::string(NUT_SOURCE_DIR) + "/" + path; }
 
 // An error is one line, `error: ` first, and says where.
