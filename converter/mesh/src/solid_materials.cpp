@@ -194,10 +194,10 @@ Sides sidesAt(const Builder& b, const FaceAlongAxis& face, const FacePiece& piec
   lo[static_cast<std::size_t>(face.v)] = hi[static_cast<std::size_t>(face.v)] = piece.j;
   lo[a] = k - 1;
   hi[a] = k;
-  // The piece's corners moved onto the boundary matter only to a cell showing a sub-block; they
-  // are made for those alone.
+  // The piece's corners moved onto the boundary matter only to a cell showing a sub-block (any
+  // other is solid by its shape alone, Builder::solidAt); they are made for those alone.
   const auto solid = [&](std::size_t cell) {
-    if (b.subPiece[cell] < 0) return b.shape[cell] >= 0;
+    if (b.subPiece[cell] < 0) return b.solidAt(cell, {});
     std::array<dvec3, 12> onBoundary = piece.corners;
     for (int m = 0; m < piece.poly.n; ++m)
       onBoundary[static_cast<std::size_t>(m)][face.a] = b.bounds[a][static_cast<std::size_t>(k)];
