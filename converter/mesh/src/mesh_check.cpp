@@ -264,7 +264,6 @@ class Repair {
   // surface cannot be made manifold, which are mapped back here).
   void orientConsistently() {
     flipped_.assign(faceCount(), 0);
-    turnedOut_.assign(faceCount(), 0);
     if (check_.inconsistentEdges == 0) return;
     std::vector<Point> points;
     points.reserve(w_.points.size());
@@ -337,6 +336,7 @@ class Repair {
   // by (a roof tray between parapets has a negative volume and is right), so it keeps the
   // orientation most of its area came with, until the whole mesh says otherwise (below).
   void turnPiecesOut() {
+    turnedOut_.assign(faceCount(), 0);
     for (std::size_t f = 0; f < faceCount(); ++f) {
       const Piece& p = pieceOf(f);
       if (p.open ? 2 * p.turnedArea > p.area : p.volume < 0) turnOut(f);
