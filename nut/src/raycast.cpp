@@ -64,7 +64,8 @@ glm::vec3 faceNormal(const Float3& d, int a) {
 }
 
 // The world normal of the face through which the ray entered the current cell of stack[top].
-glm::vec3 entryNormalWorld(const Level* stack, int top, const glm::vec3& direction) {
+// inline: called at every hit, and g++ would otherwise call it out of line.
+inline glm::vec3 entryNormalWorld(const Level* stack, int top, const glm::vec3& direction) {
   for (; top >= 0; --top) {
     const Level& L = stack[top];
     if (L.entryAxis >= 0) return L.toWorld * faceNormal(L.d, L.entryAxis);
@@ -227,146 +228,198 @@ WorldBox HniRayCaster::bounds() const {
   return box;
 }
 
-RayResult HniRayCaster::trace(const glm::dvec3& originM, const glm::dvec3& direction, double pixelAngle,
-                              const RayCastOptions& options) const {
-  return options.lookup == Lookup::Exact ? traceWith<Lookup::Exact>(originM, direction, pixelAngle, options)
-                                         : traceWith<Lookup::Heuristic>(originM, direction, pixelAngle, options);
-}
-
+// One ray's walk through the hierarchy (paper Algorithm 1): the stack of block levels, the ray
+// parameter t reached so far and the translucent tints met on the way. Each visit of the top
+// level's current cell hits its solid, lands in its sub-block or passes through it; a ray that
+// passes leaves the cell through its nearest boundary, and a level it leaves ends and returns to
+// its parent. Each of these is a method, inlined into run().
 template <Lookup mode>
-RayResult HniRayCaster::traceWith(const glm::dvec3& originM, const glm::dvec3& direction, double pixelAngle,
-                                  const RayCastOptions& options) const {
-  RayResult result;
-  Composite composite;
-  std::array<Level, kMaxStackDepth> stack;
-  int top = 0;
-  Level& root = stack[0];
-  root.block = root_;
-  root.toWorld = worldFromRoot_;
-  root.wrap = 0;
-  // The subtraction happens in double: world coordinates may be near 10^6 m (city origins).
-  root.o = toArray(glm::vec3(rootFromWorld_ * (originM - originM_) / format::kMetresPerUnit));
-  setDirection(root, glm::vec3(rootFromWorld_ * direction));
-  const glm::vec3 directionF(direction);
-  float t = land<mode>(root, blocks_[static_cast<std::size_t>(root_)], 0.0f, kInfinity);
-  if (t < 0) return result;  // misses the root box: background
-  const float angle = static_cast<float>(pixelAngle);  // a cell of size s spans s / (t * angle) pixels
-  const auto finish = [&](float tHit, const glm::vec3& normalWorld, const std::array<std::uint8_t, 3>& colour) {
-    result.hit = true;
-    result.distanceM = tHit * format::kMetresPerUnit;
-    result.normal = glm::dvec3(normalWorld);
-    if (glm::dot(result.normal, direction) > 0) result.normal = -result.normal;
-    result.colour = composite.finish(colour);
-  };
+class HniRayCaster::Walk {
+ public:
+  // The walk writes into `result`, which the caller returns (no copy of it on the way out).
+  Walk(const HniRayCaster& caster, const glm::dvec3& direction, double pixelAngle, const RayCastOptions& options,
+       RayResult& result)
+      : caster_(caster),
+        direction_(direction),
+        directionF_(direction),
+        pixelAngle_(static_cast<float>(pixelAngle)),
+        options_(options),
+        result_(result) {}
 
-  while (true) {
-    // Visit the current cell of the top level from t: hit it, land in it, or pass through it.
-    {
-      Level& L = stack[static_cast<std::size_t>(top)];
-      const Block& block = blocks_[static_cast<std::size_t>(L.block)];
-      if (++result.iterations > options.maxIterations) {
-        result.capped = true;
-        result.colour = kCappedColour;
-        return result;
+  // t and the top of the stack are kept in this loop, not in members: a member's address escapes
+  // with the stack's into land() and step(), and would be reloaded after every call.
+  void run(const glm::dvec3& originM) {
+    float t = enterRoot(originM);
+    if (t < 0) return;  // misses the root box: background
+    int top = 0;
+    while (true) {
+      if (++result_.iterations > options_.maxIterations) {
+        result_.capped = true;
+        result_.colour = kCappedColour;
+        return;
       }
+      // Visit the current cell of the top level from t: hit it, land in it, or pass through it.
+      // It is not entered when only touched (landing on a boundary moving away).
+      const Level& L = stack_[static_cast<std::size_t>(top)];
       const float tCellExit = std::min(L.tNext[argMin(L.tNext)], L.tExit);
-      // Not entered when only touched (landing on a boundary moving away).
-      const std::uint8_t* texel = tCellExit > t ? block.cellTexel({L.cell[0], L.cell[1], L.cell[2]}) : nullptr;
+      const std::uint8_t* texel =
+          tCellExit > t ? blockOf(L.block).cellTexel({L.cell[0], L.cell[1], L.cell[2]}) : nullptr;
       const int g = texel ? texel[3] : format::kCellEmpty;
       if (g >= format::kCellFirstSolid) {
-        // A box is hit where the ray enters the cell's visible part (intersectSolid's answer too).
-        float tHit = t;
-        glm::vec3 surfaceNormal(0.0f);  // unit-cube normal of a hit inside the cell, else 0
-        bool inside = true;
-        if (g != format::kCellFirstSolid) {
-          const glm::vec3 lo = toVec(L.lo), size = toVec(L.hi) - lo;
-          const Solid solid{static_cast<std::uint8_t>(g - format::kCellFirstSolid)};
-          const auto hit = intersectSolid<float>(solid, (toVec(L.o) - toVec(L.tile) - lo) / size, toVec(L.d) / size, t, tCellExit);
-          inside = hit.has_value();
-          if (hit) {
-            tHit = hit->t;
-            if (tHit != t) surfaceNormal = glm::normalize(hit->normal / size);
-          }
-        }
-        if (inside) {
-          const Material& m = materials_[static_cast<std::size_t>(texel[0] | texel[1] << 8)];
-          // A hit where the ray enters the cell's visible part is on that face, which may be a
-          // cell boundary, a box face or the face of an ancestor cell that clips this block. A
-          // camera on or inside a solid sees it at distance 0, facing itself (as intersectSolid's
-          // origin-inside rule).
-          const glm::vec3 normalWorld = tHit <= 0     ? -directionF
-                                        : tHit == t ? entryNormalWorld(stack.data(), top, directionF)
-                                                    : glm::normalize(L.toWorld * surfaceNormal);
-          const auto colour = shade({m.r, m.g, m.b}, glm::dvec3(normalWorld), direction);
-          if (m.opacity == 255) {
-            finish(tHit, normalWorld, colour);
-            return result;
-          }
-          composite.add(colour, m.opacity / 255.0);
-        }
+        if (hitSolid(L, texel, t, tCellExit, top)) return;
       } else if (g == format::kCellRedirection) {
-        const Redirect& record =
-            redirects_[static_cast<std::size_t>(redirectByRecord_[static_cast<std::size_t>(texel[1] * 256 + texel[0])])];
-        const auto belowLod = [&] {
-          const float cellSize = std::max({L.hi[0] - L.lo[0], L.hi[1] - L.lo[1], L.hi[2] - L.lo[2]});
-          return cellSize < static_cast<float>(options.lodPx) * std::max(t, 1.0f) * angle;
-        };
-        if (top + 1 == kMaxStackDepth || (options.lodPx > 0 && belowLod())) {
-          // Level of detail: the target's visual summary of the face the ray entered through.
-          const glm::vec3 normalWorld = entryNormalWorld(stack.data(), top, directionF);
-          const glm::vec3 inTarget = glm::transpose(L.toWorld * record.rotation) * normalWorld;
-          const int axis = static_cast<int>(argMin(toArray(-glm::abs(inTarget))));
-          const int side = 2 * axis + (inTarget[axis] > 0 ? 0 : 1);
-          const Rgba8 s = blocks_[static_cast<std::size_t>(record.target)].header.summary[static_cast<std::size_t>(side)];
-          const auto colour = shade({s.r, s.g, s.b}, glm::dvec3(normalWorld), direction);
-          if (s.a == 255) {
-            finish(t, normalWorld, colour);
-            return result;
-          }
-          composite.add(colour, s.a / 255.0);
+        const Redirect& record = redirectOf(texel);
+        if (top + 1 == kMaxStackDepth || (options_.lodPx > 0 && belowLevelOfDetail(L, t))) {
+          if (drawSummary(L, record, t, top)) return;
         } else {
-          Level& child = stack[static_cast<std::size_t>(top + 1)];
-          child.block = record.target;
-          const glm::vec3 inCell = toVec(L.o) - toVec(L.tile) - toVec(L.lo) - record.offset;
-          if (record.unrotated) {
-            child.o = toArray(inCell);
-            child.d = L.d;
-            child.invD = L.invD;
-            child.toWorld = L.toWorld;
-          } else {
-            const glm::mat3 toChild = glm::transpose(record.rotation);
-            child.o = toArray(toChild * inCell);
-            setDirection(child, toChild * toVec(L.d));
-            child.toWorld = L.toWorld * record.rotation;
-          }
-          child.wrap = record.wrap;
-          const float landed = land<mode>(child, blocks_[static_cast<std::size_t>(record.target)], t, tCellExit);
-          if (landed >= 0) {  // else the sub-block does not reach into this part of the cell
+          const float landed = descend(L, record, t, tCellExit, stack_[static_cast<std::size_t>(top + 1)]);
+          if (landed >= 0) {
             t = landed;
             ++top;
             continue;
-          }
+          }  // else the sub-block does not reach into this part of the cell
         }
       }
+      if (!leaveCell(t, top)) return;
     }
-    // Leave the current cell through its nearest boundary; a level left ends, and its parent
-    // leaves the cell that held it.
+  }
+
+ private:
+  const Block& blockOf(int index) const { return caster_.blocks_[static_cast<std::size_t>(index)]; }
+  const Redirect& redirectOf(const std::uint8_t* texel) const {
+    return caster_.redirects_[static_cast<std::size_t>(
+        caster_.redirectByRecord_[static_cast<std::size_t>(texel[1] * 256 + texel[0])])];
+  }
+
+  // The root level: the ray in the root block's frame, landed in its box. Returns the landing
+  // parameter, negative when the ray misses the box.
+  float enterRoot(const glm::dvec3& originM) {
+    Level& root = stack_[0];
+    root.block = caster_.root_;
+    root.toWorld = caster_.worldFromRoot_;
+    root.wrap = 0;
+    // The subtraction happens in double: world coordinates may be near 10^6 m (city origins).
+    root.o = toArray(glm::vec3(caster_.rootFromWorld_ * (originM - caster_.originM_) / format::kMetresPerUnit));
+    setDirection(root, glm::vec3(caster_.rootFromWorld_ * direction_));
+    return land<mode>(root, blockOf(caster_.root_), 0.0f, kInfinity);
+  }
+
+  // A solid cell entered at t: a box is hit there, where the ray enters the cell's visible part,
+  // another solid where intersectSolid says. Returns true when the ray ends here (opaque).
+  bool hitSolid(const Level& L, const std::uint8_t* texel, float t, float tCellExit, int top) {
+    float tHit = t;
+    glm::vec3 surfaceNormal(0.0f);  // unit-cube normal of a hit inside the cell, else 0
+    if (texel[3] != format::kCellFirstSolid) {
+      const glm::vec3 lo = toVec(L.lo), size = toVec(L.hi) - lo;
+      const Solid solid{static_cast<std::uint8_t>(texel[3] - format::kCellFirstSolid)};
+      const auto hit =
+          intersectSolid<float>(solid, (toVec(L.o) - toVec(L.tile) - lo) / size, toVec(L.d) / size, t, tCellExit);
+      if (!hit) return false;
+      tHit = hit->t;
+      if (tHit != t) surfaceNormal = glm::normalize(hit->normal / size);
+    }
+    const Material& m = caster_.materials_[static_cast<std::size_t>(texel[0] | texel[1] << 8)];
+    // A hit where the ray enters the cell's visible part is on that face, which may be a cell
+    // boundary, a box face or the face of an ancestor cell that clips this block. A camera on or
+    // inside a solid sees it at distance 0, facing itself (as intersectSolid's origin-inside rule).
+    const glm::vec3 normalWorld = tHit <= 0   ? -directionF_
+                                  : tHit == t ? entryNormalWorld(stack_.data(), top, directionF_)
+                                              : glm::normalize(L.toWorld * surfaceNormal);
+    return add(tHit, normalWorld, {m.r, m.g, m.b}, m.opacity);
+  }
+
+  // Level of detail: a cell of size s spans s / (t * pixelAngle) pixels.
+  bool belowLevelOfDetail(const Level& L, float t) const {
+    const float cellSize = std::max({L.hi[0] - L.lo[0], L.hi[1] - L.lo[1], L.hi[2] - L.lo[2]});
+    return cellSize < static_cast<float>(options_.lodPx) * std::max(t, 1.0f) * pixelAngle_;
+  }
+
+  // A redirection cell drawn as its target's visual summary of the face the ray entered through.
+  // Returns true when the ray ends here (opaque).
+  bool drawSummary(const Level& L, const Redirect& record, float t, int top) {
+    const glm::vec3 normalWorld = entryNormalWorld(stack_.data(), top, directionF_);
+    const glm::vec3 inTarget = glm::transpose(L.toWorld * record.rotation) * normalWorld;
+    const int axis = static_cast<int>(argMin(toArray(-glm::abs(inTarget))));
+    const int side = 2 * axis + (inTarget[axis] > 0 ? 0 : 1);
+    const Rgba8 s = blockOf(record.target).header.summary[static_cast<std::size_t>(side)];
+    return add(t, normalWorld, {s.r, s.g, s.b}, s.a);
+  }
+
+  // Sets `child` to the record's target, the ray turned into its frame, and lands in it. Returns
+  // the landing parameter, negative when the sub-block does not reach into [t, tCellExit].
+  float descend(const Level& L, const Redirect& record, float t, float tCellExit, Level& child) const {
+    child.block = record.target;
+    const glm::vec3 inCell = toVec(L.o) - toVec(L.tile) - toVec(L.lo) - record.offset;
+    if (record.unrotated) {
+      child.o = toArray(inCell);
+      child.d = L.d;
+      child.invD = L.invD;
+      child.toWorld = L.toWorld;
+    } else {
+      const glm::mat3 toChild = glm::transpose(record.rotation);
+      child.o = toArray(toChild * inCell);
+      setDirection(child, toChild * toVec(L.d));
+      child.toWorld = L.toWorld * record.rotation;
+    }
+    child.wrap = record.wrap;
+    return land<mode>(child, blockOf(record.target), t, tCellExit);
+  }
+
+  // Leaves the current cell through its nearest boundary; a level left ends, and its parent leaves
+  // the cell that held it. Returns false when the ray leaves the root block: the background,
+  // tinted by what it passed.
+  bool leaveCell(float& t, int& top) {
     while (true) {
-      Level& L = stack[static_cast<std::size_t>(top)];
+      Level& L = stack_[static_cast<std::size_t>(top)];
       const std::size_t a = argMin(L.tNext);
       const float tCross = L.tNext[a];
-      if (tCross < L.tExit && step<mode>(L, blocks_[static_cast<std::size_t>(L.block)], a)) {
+      if (tCross < L.tExit && step<mode>(L, blockOf(L.block), a)) {
         t = std::max(t, tCross);
-        break;
+        return true;
       }
       if (top == 0) {
-        result.colour = composite.finish(kBackground);
-        return result;
+        result_.colour = composite_.finish(kBackground);
+        return false;
       }
       t = L.tExit;
       --top;
     }
   }
+
+  // A surface of this albedo and opacity met at tHit: an opaque one ends the ray (true), a
+  // translucent one tints what lies behind it.
+  bool add(float tHit, const glm::vec3& normalWorld, const std::array<std::uint8_t, 3>& albedo, std::uint8_t opacity) {
+    const auto colour = shade(albedo, glm::dvec3(normalWorld), direction_);
+    if (opacity != 255) {
+      composite_.add(colour, opacity / 255.0);
+      return false;
+    }
+    result_.hit = true;
+    result_.distanceM = tHit * format::kMetresPerUnit;
+    result_.normal = glm::dvec3(normalWorld);
+    if (glm::dot(result_.normal, direction_) > 0) result_.normal = -result_.normal;
+    result_.colour = composite_.finish(colour);
+    return true;
+  }
+
+  const HniRayCaster& caster_;
+  glm::dvec3 direction_;
+  glm::vec3 directionF_;
+  float pixelAngle_;  // radians
+  const RayCastOptions& options_;
+  RayResult& result_;
+  Composite composite_;
+  std::array<Level, kMaxStackDepth> stack_;
+};
+
+RayResult HniRayCaster::trace(const glm::dvec3& originM, const glm::dvec3& direction, double pixelAngle,
+                              const RayCastOptions& options) const {
+  RayResult result;
+  if (options.lookup == Lookup::Exact)
+    Walk<Lookup::Exact>(*this, direction, pixelAngle, options, result).run(originM);
+  else
+    Walk<Lookup::Heuristic>(*this, direction, pixelAngle, options, result).run(originM);
+  return result;
 }
 
 namespace {

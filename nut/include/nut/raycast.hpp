@@ -91,9 +91,9 @@ class HniRayCaster {
     bool unrotated = true;  // most redirections: the ray needs no transform, only the offset
   };
 
+  // One ray's traversal (raycast.cpp), with the lookup's boundaries.
   template <Lookup mode>
-  RayResult traceWith(const glm::dvec3& originM, const glm::dvec3& direction, double pixelAngle,
-                      const RayCastOptions& options) const;
+  class Walk;
   int blockAt(TexelAddress header) const;
 
   const Image& image_;
