@@ -7,6 +7,8 @@
 
 #include <filesystem>
 
+#include <glm/common.hpp>
+
 #include <meshref/embree_renderer.hpp>
 #include <meshref/image_compare.hpp>
 #include <meshref/obj.hpp>
@@ -104,6 +106,30 @@ TEST_P(SampleRender, RayCastMatchesEmbreeOnTheExportedMesh) {
                 mode, diff->differingPct, static_cast<long long>(diff->pixels), kThreshold, offEdge, diff->rms);
     EXPECT_LE(diff->differingPct, 0.5) << name << " " << mode << ": see " << stem << ".diff.png";
     EXPECT_EQ(offEdge, 0) << name << " " << mode << ": differing pixels away from any edge; see " << stem << ".diff.png";
+  }
+}
+
+TEST_P(SampleRender, ContentBoundsAreTheCoarseMeshVertexBoundsToTheBit) {
+  // The bounds walk skips every cell, row, layer and tile that the bounds found so far already
+  // hold (most of a sample's instances: the building's storeys and bays); the box must still be
+  // the one the export's vertices give, bit for bit, quadrics at one segment per quarter.
+  const std::string name = GetParam();
+  auto png = readPng(std::string(NUT_SOURCE_DIR) + "/samples/hni/" + name + ".png");
+  ASSERT_TRUE(png.ok()) << png.error().message;
+  auto h = decode(png->image);
+  ASSERT_TRUE(h.ok()) << h.error().message;
+  MeshExportOptions coarse;
+  coarse.minSegmentsPerQuarter = coarse.maxSegmentsPerQuarter = 1;
+  auto mesh = exportMesh(*h, png->text.originM, coarse);
+  ASSERT_TRUE(mesh.ok()) << mesh.error().message;
+  ASSERT_FALSE(mesh->positions.empty());
+  glm::dvec3 lo = mesh->positions.front(), hi = lo;
+  for (const glm::dvec3& p : mesh->positions) lo = glm::min(lo, p), hi = glm::max(hi, p);
+  auto content = contentBounds(*h, png->text.originM);
+  ASSERT_TRUE(content.ok()) << content.error().message;
+  for (int a = 0; a < 3; ++a) {
+    EXPECT_EQ(content->min[a], lo[a]) << name << " axis " << a;
+    EXPECT_EQ(content->max[a], hi[a]) << name << " axis " << a;
   }
 }
 

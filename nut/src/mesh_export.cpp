@@ -23,9 +23,11 @@
 #include <unordered_map>
 #include <utility>
 
+#include <glm/common.hpp>
 #include <glm/geometric.hpp>
 #include <glm/mat3x3.hpp>
 #include <glm/matrix.hpp>
+#include <glm/vector_relational.hpp>
 
 #include "convex_pieces.hpp"
 #include "unit_solids.hpp"
@@ -161,6 +163,28 @@ class Exporter {
   }
 
   bool hasSolid(BlockId b) const { return content_[b] == Content::Solid; }
+
+  // The k-th of n indices to visit. The bounds walk takes them from both ends inwards (0, n - 1,
+  // 1, n - 2, ...): the outermost cells and tiles set the bounds first, and the ones between them
+  // are then skipped as covered. The export keeps the plain order, which numbers its vertices.
+  std::int64_t visitOrder(std::int64_t k, std::int64_t n) const {
+    if (!boundsOnly_) return k;
+    return k % 2 == 0 ? k / 2 : n - 1 - k / 2;
+  }
+
+  // Whether the bounds so far hold everything a box could add (boundsOnly_): every vertex from
+  // inside it lies in the box turned into the root frame, up to rounding and the kOnPlaneM by which
+  // a piece may stand out of an ancestor cell uncut; the margin covers both many times over. The
+  // bounds are extremes of vertices, so skipping such a box leaves them the same to the bit.
+  bool covered(const Frame& frame, const Box& box) const {
+    if (!bounds_) return false;
+    constexpr double kMarginM = 10 * kOnPlaneM;
+    const dvec3 centre = frame.apply(0.5 * (box.lo + box.hi));
+    const glm::dmat3 absolute(glm::abs(frame.rotation[0]), glm::abs(frame.rotation[1]), glm::abs(frame.rotation[2]));
+    const dvec3 reach = absolute * (0.5 * (box.hi - box.lo)) + kMarginM;
+    return glm::all(glm::greaterThanEqual(centre - reach, bounds_->min)) &&
+           glm::all(glm::lessThanEqual(centre + reach, bounds_->max));
+  }
 
   void fail(std::string message) {
     if (!failure_) failure_ = Error{"mesh export: " + std::move(message)};
@@ -365,10 +389,15 @@ class Exporter {
            " times, over the limit of " + std::to_string(options_.maxCellVisits) + " cell visits");
       return;
     }
-    for (double kz = first.z; kz <= last.z; ++kz)
-      for (double ky = first.y; ky <= last.y; ++ky)
-        for (double kx = first.x; kx <= last.x; ++kx) {
-          visitTile(child, {kx, ky, kz});
+    // At most maxCellVisits tiles in all (above), so each count fits.
+    const std::array<std::int64_t, 3> count{static_cast<std::int64_t>(last.x - first.x + 1),
+                                            static_cast<std::int64_t>(last.y - first.y + 1),
+                                            static_cast<std::int64_t>(last.z - first.z + 1)};
+    for (std::int64_t kz = 0; kz < count[2]; ++kz)
+      for (std::int64_t ky = 0; ky < count[1]; ++ky)
+        for (std::int64_t kx = 0; kx < count[0]; ++kx) {
+          const dvec3 k(visitOrder(kx, count[0]), visitOrder(ky, count[1]), visitOrder(kz, count[2]));
+          visitTile(child, first + k);
           if (failure_) return;
         }
   }
@@ -379,20 +408,31 @@ class Exporter {
       return;
     }
     const Block& block = h_.blocks[inst.block];
+    const glm::ivec3 n(block.cellCount(0), block.cellCount(1), block.cellCount(2));
+    // The box of cells first..last; the bounds walk skips a covered tile, layer or row whole.
+    const auto coveredCells = [&](const glm::ivec3& first, const glm::ivec3& last) {
+      return boundsOnly_ && covered(inst.frame, {cellBox(block, tile, first).lo, cellBox(block, tile, last).hi});
+    };
+    if (coveredCells({0, 0, 0}, n - 1)) return;
     const auto tilePlanes = cuttingPlanes(*inst.planes, inst.frame, tileBox(block, tile));
     if (!tilePlanes) return;
-    for (int z = 0; z < block.cellCount(2); ++z)
-      for (int y = 0; y < block.cellCount(1); ++y)
-        for (int x = 0; x < block.cellCount(0); ++x) {
+    for (int kz = 0; kz < n.z; ++kz) {
+      const int z = static_cast<int>(visitOrder(kz, n.z));
+      if (coveredCells({0, 0, z}, {n.x - 1, n.y - 1, z})) continue;
+      for (int ky = 0; ky < n.y; ++ky) {
+        const int y = static_cast<int>(visitOrder(ky, n.y));
+        if (coveredCells({0, y, z}, {n.x - 1, y, z})) continue;
+        for (int kx = 0; kx < n.x; ++kx) {
           if (++visits_ > options_.maxCellVisits) {
             fail("more than " + std::to_string(options_.maxCellVisits) + " cell visits (the limit)");
             return;
           }
-          const Cell& cell = block.cell(x, y, z);
+          const glm::ivec3 c(static_cast<int>(visitOrder(kx, n.x)), y, z);
+          const Cell& cell = block.cell(c.x, c.y, c.z);
           if (cell.kind == CellKind::Empty) continue;
           if (cell.kind == CellKind::Redirection && !hasSolid(block.redirections[cell.redirection].target)) continue;
-          const glm::ivec3 c(x, y, z);
           const Box box = cellBox(block, tile, c);
+          if (boundsOnly_ && covered(inst.frame, box)) continue;
           const auto cutting = cuttingPlanes(*tilePlanes, inst.frame, box);
           if (!cutting) continue;
           if (cell.kind == CellKind::Redirection)
@@ -403,6 +443,8 @@ class Exporter {
             emitCut(inst, cell, box, *cutting);
           if (failure_) return;
         }
+      }
+    }
   }
 
   const Hierarchy& h_;

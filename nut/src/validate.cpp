@@ -203,37 +203,42 @@ class Validator {
   Status checkCell(int b, const BlockHeader& header, const glm::ivec3& c) {
     const std::uint8_t* p = view_.cellTexel(header, c);
     const TexelAddress px{header.data.u + c.x + c.z * header.cells.x, header.data.v + header.cells.y - 1 - c.y};
-    const std::string where = "block " + std::to_string(b) + " cell (" + std::to_string(c.x) + "," +
-                              std::to_string(c.y) + "," + std::to_string(c.z) + ") " + at(px);
+    // Named only on failure: a large HNI has hundreds of thousands of cells, and building the name
+    // of each was most of the time validation took.
+    const auto where = [&] {
+      return "block " + std::to_string(b) + " cell (" + std::to_string(c.x) + "," + std::to_string(c.y) + "," +
+             std::to_string(c.z) + ") " + at(px);
+    };
     const int g = p[3];
     if (g == format::kCellEmpty) {
-      if (p[0] | p[1] | p[2]) return Error{where + ": empty cell with non-zero data"};
+      if (p[0] | p[1] | p[2]) return Error{where() + ": empty cell with non-zero data"};
       return Ok{};
     }
-    if (g > format::kCellLastSolid) return Error{where + ": cell descriptor g = " + std::to_string(g) + " is out of range"};
+    if (g > format::kCellLastSolid)
+      return Error{where() + ": cell descriptor g = " + std::to_string(g) + " is out of range"};
     if (g >= format::kCellFirstSolid) {
       const int material = p[0] | p[1] << 8;
       if (material >= file_.materialCount)
-        return Error{where + ": material " + std::to_string(material) + " out of range (" +
+        return Error{where() + ": material " + std::to_string(material) + " out of range (" +
                      std::to_string(file_.materialCount) + " materials)"};
       if (p[2] > file_.textureCount)
-        return Error{where + ": texture " + std::to_string(p[2]) + " out of range (" +
+        return Error{where() + ": texture " + std::to_string(p[2]) + " out of range (" +
                      std::to_string(file_.textureCount) + " texture infos)"};
       return Ok{};
     }
     const TexelAddress r{p[0], p[1]};
-    if (p[2] != 0) return Error{where + ": redirection cell with a non-zero texture byte"};
+    if (p[2] != 0) return Error{where() + ": redirection cell with a non-zero texture byte"};
     if (!inside(r, format::kRedirectionPixels, 1, true))
-      return Error{where + ": redirection record at " + at(r) + " does not fit in the metadata region"};
+      return Error{where() + ": redirection record at " + at(r) + " does not fit in the metadata region"};
     const RedirectionRecord record = view_.redirection(r);
-    const std::string rw = "redirection record " + at(r);
+    const auto rw = [&] { return "redirection record " + at(r); };
     if (record.wrap > (format::kWrapX | format::kWrapY | format::kWrapZ))
-      return Error{rw + ": tiling flags " + std::to_string(record.wrap) + " out of range"};
+      return Error{rw() + ": tiling flags " + std::to_string(record.wrap) + " out of range"};
     if (record.cubeRotation >= format::kCubeRotationCount)
-      return Error{rw + ": rotation " + std::to_string(record.cubeRotation) + " out of range"};
-    if (view_.texel(r, 2)[3] != 0) return Error{rw + ": reserved byte is not zero"};
+      return Error{rw() + ": rotation " + std::to_string(record.cubeRotation) + " out of range"};
+    if (view_.texel(r, 2)[3] != 0) return Error{rw() + ": reserved byte is not zero"};
     const auto target = headers_.find({record.target.u, record.target.v});
-    if (target == headers_.end()) return Error{rw + ": target " + at(record.target) + " is not a block header"};
+    if (target == headers_.end()) return Error{rw() + ": target " + at(record.target) + " is not a block header"};
     recordTargets_[{r.u, r.v}] = target->second;
     edges_[static_cast<std::size_t>(b)].insert(target->second);
     return Ok{};
