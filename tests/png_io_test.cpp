@@ -107,7 +107,15 @@ TEST(PngIo, FailedWriteLeavesNothing) {
   const Status s = writePng(missing.string(), randomImage(2, 2, 4));
   ASSERT_FALSE(s.ok());
   EXPECT_NE(s.error().message.find("x.png"), std::string::npos) << s.error().message;
+  EXPECT_NE(s.error().message.find("there is no folder " + missing.parent_path().string()), std::string::npos)
+      << s.error().message;
   EXPECT_FALSE(fs::exists(missing.parent_path()));
+  // A file where the folder should be.
+  const fs::path file = outputDir() / "a-file";
+  std::ofstream(file) << "not a folder";
+  const Status t = writeTextFile((file / "report.json").string(), "{}");
+  ASSERT_FALSE(t.ok());
+  EXPECT_NE(t.error().message.find(file.string() + " is not a folder"), std::string::npos) << t.error().message;
 }
 
 TEST(PngIo, ReadErrorsNameTheFile) {

@@ -19,7 +19,6 @@
 #include <map>
 #include <numbers>
 #include <optional>
-#include <random>
 #include <unordered_map>
 #include <utility>
 
@@ -29,6 +28,7 @@
 #include <glm/matrix.hpp>
 #include <glm/vector_relational.hpp>
 
+#include "atomic_file.hpp"
 #include "convex_pieces.hpp"
 #include "unit_solids.hpp"
 
@@ -477,26 +477,6 @@ void appendNumber(std::string& out, std::uint64_t value) {
   out.append(buffer, result.ptr);
 }
 
-std::filesystem::path temporarySibling(const std::filesystem::path& path) {
-  std::random_device device;
-  return path.parent_path() / (path.filename().string() + ".tmp" + std::to_string(device()));
-}
-
-// Streams `write`'s chunks to a temporary sibling of path; returns its name.
-Result<std::filesystem::path> writeTemporary(const std::filesystem::path& path,
-                                             const std::function<bool(std::ofstream&)>& write) {
-  const std::filesystem::path temporary = temporarySibling(path);
-  std::ofstream out(temporary, std::ios::binary);
-  if (!out) return Error{path.string() + ": cannot create the file"};
-  if (!write(out) || !out.flush()) {
-    out.close();
-    std::error_code ignored;
-    std::filesystem::remove(temporary, ignored);
-    return Error{path.string() + ": write failed"};
-  }
-  return temporary;
-}
-
 }  // namespace
 
 Result<ExportedMesh> exportMesh(const Hierarchy& h, const glm::dvec3& originM, const MeshExportOptions& options) {
@@ -594,27 +574,23 @@ Status writeObj(const std::string& objPath, const ExportedMesh& mesh, const std:
   const std::filesystem::path mtl = std::filesystem::path(obj).replace_extension(".mtl");
   if (mtl == obj) return Error{objPath + ": the OBJ file needs a name other than its MTL file's"};
   // Both files are written to temporaries first and renamed into place only when both are whole.
-  auto mtlTemporary = writeTemporary(mtl, [&](std::ofstream& out) {
+  auto mtlTemporary = files::writeTemporary(mtl, [&](std::ofstream& out) {
     const std::string text = mtlText(materials);
     return static_cast<bool>(out.write(text.data(), static_cast<std::streamsize>(text.size())));
   });
   if (!mtlTemporary) return mtlTemporary.error();
   auto objTemporary =
-      writeTemporary(obj, [&](std::ofstream& out) { return writeObjText(out, mesh, mtl.filename().string()); });
+      files::writeTemporary(obj, [&](std::ofstream& out) { return writeObjText(out, mesh, mtl.filename().string()); });
   std::error_code error;
   if (!objTemporary) {
     std::filesystem::remove(*mtlTemporary, error);
     return objTemporary.error();
   }
-  for (const auto& [temporary, target] : {std::pair{*mtlTemporary, mtl}, std::pair{*objTemporary, obj}}) {
-    std::filesystem::rename(temporary, target, error);
-    if (error) {
-      std::filesystem::remove(*mtlTemporary, error);
-      std::filesystem::remove(*objTemporary, error);
-      return Error{target.string() + ": cannot rename the written file into place"};
-    }
+  if (Status s = files::moveIntoPlace(*mtlTemporary, mtl); !s) {
+    std::filesystem::remove(*objTemporary, error);
+    return s;
   }
-  return Ok{};
+  return files::moveIntoPlace(*objTemporary, obj);
 }
 
 }  // namespace nut

@@ -16,8 +16,9 @@
 #include <fstream>
 #include <iterator>
 #include <memory>
-#include <random>
 #include <sstream>
+
+#include "atomic_file.hpp"
 
 namespace nut {
 
@@ -27,12 +28,6 @@ constexpr const char* kName = "nut:name";
 constexpr const char* kGenerator = "nut:generator";
 constexpr const char* kUnits = "nut:units";
 constexpr const char* kOrigin = "nut:origin";
-
-// A sibling of `path` that no other writer picks.
-std::filesystem::path temporaryPath(const std::filesystem::path& path) {
-  std::random_device device;
-  return path.parent_path() / (path.filename().string() + ".tmp" + std::to_string(device()));
-}
 
 std::uint32_t readBigEndian32(const std::uint8_t* p) {
   return static_cast<std::uint32_t>(p[0]) << 24 | static_cast<std::uint32_t>(p[1]) << 16 |
@@ -149,29 +144,6 @@ Status decodePng(const std::string& path, const std::vector<std::uint8_t>& bytes
   return Ok{};
 }
 
-// Writes bytes to a temporary sibling and renames it over `path`.
-Status writeAtomically(const std::string& path, const std::string& bytes) {
-  const std::filesystem::path target(path);
-  const std::filesystem::path temporary = temporaryPath(target);
-  {
-    std::ofstream out(temporary, std::ios::binary);
-    if (!out) return Error{path + ": cannot create the file"};
-    out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
-    if (!out.flush()) {
-      std::error_code ignored;
-      std::filesystem::remove(temporary, ignored);
-      return Error{path + ": write failed"};
-    }
-  }
-  std::error_code error;
-  std::filesystem::rename(temporary, target, error);
-  if (error) {
-    std::filesystem::remove(temporary, error);
-    return Error{path + ": cannot rename the written file into place"};
-  }
-  return Ok{};
-}
-
 }  // namespace
 
 Status writePfm(const std::string& path, int width, int height, const std::vector<float>& values) {
@@ -184,10 +156,10 @@ Status writePfm(const std::string& path, int width, int height, const std::vecto
     std::memcpy(&bytes[header + static_cast<std::size_t>(y) * static_cast<std::size_t>(width) * sizeof(float)],
                 &values[static_cast<std::size_t>(height - 1 - y) * static_cast<std::size_t>(width)],
                 static_cast<std::size_t>(width) * sizeof(float));
-  return writeAtomically(path, bytes);
+  return files::writeWhole(path, bytes);
 }
 
-Status writeTextFile(const std::string& path, const std::string& text) { return writeAtomically(path, text); }
+Status writeTextFile(const std::string& path, const std::string& text) { return files::writeWhole(path, text); }
 
 Result<std::string> readTextFile(const std::string& path) {
   std::error_code ec;
@@ -207,12 +179,12 @@ Result<std::string> readTextFile(const std::string& path) {
 
 Status writePng(const std::string& path, const Image& image, PngEffort effort) {
   if (image.width <= 0 || image.height <= 0) return Error{path + ": cannot write an empty image"};
-  return writeAtomically(path, encodePng(image, nullptr, effort));
+  return files::writeWhole(path, encodePng(image, nullptr, effort));
 }
 
 Status writeHni(const std::string& path, const Image& image, const HniText& text, PngEffort effort) {
   if (image.width <= 0 || image.height <= 0) return Error{path + ": cannot write an empty image"};
-  return writeAtomically(path, encodePng(image, &text, effort));
+  return files::writeWhole(path, encodePng(image, &text, effort));
 }
 
 Result<PngFile> readPng(const std::string& path) {
