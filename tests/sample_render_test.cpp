@@ -50,25 +50,39 @@ bool nearEdge(const Image& image, const std::vector<float>& distance, int x, int
 
 class SampleRender : public ::testing::TestWithParam<std::string> {};
 
+// A sample HNI and its hierarchy.
+struct Sample {
+  PngFile png;
+  Hierarchy hierarchy;
+};
+
+Result<Sample> loadSample(const std::string& name) {
+  auto png = readPng(std::string(NUT_SOURCE_DIR) + "/samples/hni/" + name + ".png");
+  if (!png) return png.error();
+  auto h = decode(png->image);
+  if (!h) return h.error();
+  return Sample{std::move(*png), std::move(*h)};
+}
+
 TEST_P(SampleRender, RayCastMatchesEmbreeOnTheExportedMesh) {
   const std::string name = GetParam();
-  auto png = readPng(std::string(NUT_SOURCE_DIR) + "/samples/hni/" + name + ".png");
-  ASSERT_TRUE(png.ok()) << png.error().message;
-  auto h = decode(png->image);
-  ASSERT_TRUE(h.ok()) << h.error().message;
+  auto sample = loadSample(name);
+  ASSERT_TRUE(sample.ok()) << sample.error().message;
+  const PngFile& png = sample->png;
+  const Hierarchy& h = sample->hierarchy;
 
   // export-mesh, then render-mesh's reader.
-  auto exported = exportMesh(*h, png->text.originM);
+  auto exported = exportMesh(h, png.text.originM);
   ASSERT_TRUE(exported.ok()) << exported.error().message;
   const fs::path obj = outputDir() / (name + ".obj");
-  ASSERT_TRUE(writeObj(obj.string(), *exported, h->materials).ok());
+  ASSERT_TRUE(writeObj(obj.string(), *exported, h.materials).ok());
   auto mesh = meshref::readObj(obj.string());
   ASSERT_TRUE(mesh.ok()) << mesh.error().message;
   auto embree = meshref::EmbreeRenderer::create(*mesh);
   ASSERT_TRUE(embree.ok()) << embree.error().message;
 
   // The default cameras of `nut render` and `nut render-mesh` are fitted to these two boxes.
-  auto content = contentBounds(*h, png->text.originM);
+  auto content = contentBounds(h, png.text.originM);
   ASSERT_TRUE(content.ok());
   for (int a = 0; a < 3; ++a) {
     EXPECT_NEAR(content->min[a], embree->bounds().min[a], 1e-6) << name << " axis " << a;
@@ -76,7 +90,7 @@ TEST_P(SampleRender, RayCastMatchesEmbreeOnTheExportedMesh) {
   }
   const Camera camera = fitCamera(*content, kWidth, kHeight);
 
-  const HniRayCaster caster(png->image, png->text.originM);
+  const HniRayCaster caster(png.image, png.text.originM);
   for (const Lookup lookup : {Lookup::Heuristic, Lookup::Exact}) {
     const char* mode = lookup == Lookup::Exact ? "exact" : "heuristic";
     RayCastOptions options;
@@ -114,18 +128,18 @@ TEST_P(SampleRender, ContentBoundsAreTheCoarseMeshVertexBoundsToTheBit) {
   // hold (most of a sample's instances: the building's storeys and bays); the box must still be
   // the one the export's vertices give, bit for bit, quadrics at one segment per quarter.
   const std::string name = GetParam();
-  auto png = readPng(std::string(NUT_SOURCE_DIR) + "/samples/hni/" + name + ".png");
-  ASSERT_TRUE(png.ok()) << png.error().message;
-  auto h = decode(png->image);
-  ASSERT_TRUE(h.ok()) << h.error().message;
+  auto sample = loadSample(name);
+  ASSERT_TRUE(sample.ok()) << sample.error().message;
+  const PngFile& png = sample->png;
+  const Hierarchy& h = sample->hierarchy;
   MeshExportOptions coarse;
   coarse.minSegmentsPerQuarter = coarse.maxSegmentsPerQuarter = 1;
-  auto mesh = exportMesh(*h, png->text.originM, coarse);
+  auto mesh = exportMesh(h, png.text.originM, coarse);
   ASSERT_TRUE(mesh.ok()) << mesh.error().message;
   ASSERT_FALSE(mesh->positions.empty());
   glm::dvec3 lo = mesh->positions.front(), hi = lo;
   for (const glm::dvec3& p : mesh->positions) lo = glm::min(lo, p), hi = glm::max(hi, p);
-  auto content = contentBounds(*h, png->text.originM);
+  auto content = contentBounds(h, png.text.originM);
   ASSERT_TRUE(content.ok()) << content.error().message;
   for (int a = 0; a < 3; ++a) {
     EXPECT_EQ(content->min[a], lo[a]) << name << " axis " << a;

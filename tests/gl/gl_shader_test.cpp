@@ -19,6 +19,7 @@
 #include <viewer/context.hpp>
 #include <viewer/hni_renderer.hpp>
 #include <viewer/mesh_renderer.hpp>
+#include <viewer/render_target.hpp>
 #include <viewer/shader_library.hpp>
 
 namespace nut::gltest {
@@ -328,6 +329,26 @@ TEST(Backends, UnknownNamesAreRefused) {
   auto bad = viewer::parseBackend("vulkan");
   ASSERT_FALSE(bad.ok());
   EXPECT_NE(bad.error().message.find("osmesa, egl or glfw"), std::string::npos);
+}
+
+TEST(GlTextures, SizesOutsideTheContextsLimitAreRefusedNamingIt) {
+  auto probe = openProbe();
+  ASSERT_TRUE(probe);
+  const viewer::Gl& gl = probe->context().gl();
+  GLint maxSize = 0;
+  gl.GetIntegerv(GL_MAX_TEXTURE_SIZE, &maxSize);
+  const std::string limit = "the GL context takes 1.." + std::to_string(maxSize) + " per side";
+  for (const auto& [w, h] : {std::pair{0, 4}, std::pair{4, -1}, std::pair{static_cast<int>(maxSize) + 1, 4}}) {
+    const std::string size = std::to_string(w) + "x" + std::to_string(h);
+    auto atlas = viewer::HniAtlas::create(gl, w, h);
+    ASSERT_FALSE(atlas.ok()) << size;
+    EXPECT_EQ(atlas.error().message, "HNI atlas " + size + ": " + limit);
+    auto target = viewer::RenderTarget::create(gl, w, h);
+    ASSERT_FALSE(target.ok()) << size;
+    EXPECT_EQ(target.error().message, "render target " + size + ": " + limit);
+  }
+  EXPECT_TRUE(viewer::HniAtlas::create(gl, 4, 4).ok());
+  EXPECT_TRUE(viewer::RenderTarget::create(gl, 4, 4).ok());
 }
 
 }  // namespace

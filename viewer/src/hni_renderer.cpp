@@ -23,11 +23,7 @@ struct InstanceData {
 }  // namespace
 
 Result<HniAtlas> HniAtlas::create(const Gl& gl, int width, int height) {
-  GLint maxSize = 0;
-  gl.GetIntegerv(GL_MAX_TEXTURE_SIZE, &maxSize);
-  if (width < 1 || height < 1 || width > maxSize || height > maxSize)
-    return Error{"HNI atlas " + std::to_string(width) + "x" + std::to_string(height) + ": the GL context takes 1.." +
-                 std::to_string(maxSize) + " per side"};
+  if (Status s = checkTextureSize(gl, "HNI atlas", width, height); !s) return s.error();
   HniAtlas atlas(gl, width, height);
   atlas.texture_ = makeTexture(gl);
   gl.BindTexture(GL_TEXTURE_2D, atlas.texture_.get());

@@ -21,11 +21,7 @@ void flipRows(std::vector<T>& values, std::size_t rowLength, int rows) {
 }  // namespace
 
 Result<RenderTarget> RenderTarget::create(const Gl& gl, int width, int height) {
-  GLint maxSize = 0;
-  gl.GetIntegerv(GL_MAX_TEXTURE_SIZE, &maxSize);
-  if (width < 1 || height < 1 || width > maxSize || height > maxSize)
-    return Error{"render target " + std::to_string(width) + "x" + std::to_string(height) + ": the GL context takes 1.." +
-                 std::to_string(maxSize) + " per side"};
+  if (Status s = checkTextureSize(gl, "render target", width, height); !s) return s.error();
   RenderTarget t(gl, width, height);
   t.colour_ = makeTexture(gl);
   gl.BindTexture(GL_TEXTURE_2D, t.colour_.get());

@@ -1,8 +1,10 @@
 // viewer/gl_object.hpp — ownership of GL object names: one name and the call that deletes it.
 #pragma once
 
+#include <string>
 #include <utility>
 
+#include <nut/error.hpp>
 #include <viewer/gl.hpp>
 
 namespace nut::viewer {
@@ -42,6 +44,8 @@ class GlObject {
 };
 
 GlObject makeTexture(const Gl& gl);
+// Whether the context takes a 2D texture of width x height; the error names `what` and the limit.
+Status checkTextureSize(const Gl& gl, const std::string& what, int width, int height);
 GlObject makeBuffer(const Gl& gl);
 GlObject makeVertexArray(const Gl& gl);
 GlObject makeFramebuffer(const Gl& gl);
