@@ -235,9 +235,8 @@ TEST(ExactPath, YawQuarterTurnEqualsTheCubeRotation) {
   EXPECT_GT(hits, 100);  // the rays really do test the solid
 }
 
-TEST(ExactPath, TargetLargerThanItsCellIsClipped) {
-  // Root: two 2 m cells along x; cell 0 shows a 5 x 2 x 2 box block that reaches into cell 1's
-  // space, which is empty and must stay empty.
+// Root: two 2 m cells along x; cell 0 shows a 5 x 2 x 2 box block that reaches into cell 1's space.
+Hierarchy targetLargerThanItsCell() {
   Block root = Block::fromSizes({{{2.0, 2.0}, {2.0}, {2.0}}});
   root.redirections.push_back({1, glm::dvec3(0.0), {}, {false, false, false}});
   root.cell(0, 0, 0) = Cell::redirect(0);
@@ -245,6 +244,12 @@ TEST(ExactPath, TargetLargerThanItsCellIsClipped) {
   Block big = Block::fromSizes({{{5.0}, {2.0}, {2.0}}});
   big.cell(0, 0, 0) = Cell::box(0);
   h.addBlock(big);
+  return h;
+}
+
+TEST(ExactPath, TargetLargerThanItsCellIsClipped) {
+  // Cell 1's space is empty and must stay empty.
+  const Hierarchy h = targetLargerThanItsCell();
   const glm::dvec3 down{0, 0, -1};
   EXPECT_FALSE(traceExact(h, kFarOrigin, kFarOrigin + glm::dvec3(3.0, 1.0, 10.0), down).hit);
   const RayResult inside = traceExact(h, kFarOrigin, kFarOrigin + glm::dvec3(1.0, 1.0, 10.0), down);
@@ -344,14 +349,8 @@ TEST(ExactPath, ReportsTheSurfaceForErrorBounds) {
 }
 
 TEST(ExactPath, ReportsAClipFaceAsTheSurfaceOfTheClippingBlock) {
-  // As TargetLargerThanItsCellIsClipped: the clip face x = 2 is a boundary of the root.
-  Block root = Block::fromSizes({{{2.0, 2.0}, {2.0}, {2.0}}});
-  root.redirections.push_back({1, glm::dvec3(0.0), {}, {false, false, false}});
-  root.cell(0, 0, 0) = Cell::redirect(0);
-  Hierarchy h = withRoot(root, {kRed});
-  Block big = Block::fromSizes({{{5.0}, {2.0}, {2.0}}});
-  big.cell(0, 0, 0) = Cell::box(0);
-  h.addBlock(big);
+  // The clip face x = 2 is a boundary of the root.
+  const Hierarchy h = targetLargerThanItsCell();
   ExactSurface surface;
   const RayResult r = traceExact(h, glm::dvec3(0.0), glm::dvec3(10.0, 1.0, 1.0), glm::dvec3(-1, 0, 0),
                                  {.surface = &surface});
