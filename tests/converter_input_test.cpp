@@ -132,6 +132,26 @@ TEST(ObjInput, ReadsObjectsMaterialsAndNegativeIndices) {
   EXPECT_EQ(obj->objects[0].materials[obj->objects[0].triangleMaterial[0]], (Material{255, 0, 0, 255, 0}));
 }
 
+TEST(ObjInput, NonConvexFacesKeepTheirShape) {
+  // An L-shaped prism 3 m tall whose floor and roof are single six-corner faces, written from the
+  // corner whose fan would also cover the notch: read as its shape, it is closed and fills the
+  // three cells of the L, and the notch's cell stays empty.
+  const std::string obj =
+      "v 6 0 0\nv 6 0 2\nv 2 0 2\nv 2 0 5\nv 0 0 5\nv 0 0 0\n"
+      "v 6 3 0\nv 6 3 2\nv 2 3 2\nv 2 3 5\nv 0 3 5\nv 0 3 0\n"
+      "f 1 2 3 4 5 6\nf 7 12 11 10 9 8\n"
+      "f 1 7 8 2\nf 2 8 9 3\nf 3 9 10 4\nf 4 10 11 5\nf 5 11 12 6\nf 6 12 7 1\n";
+  auto c = convertText("l_prism", obj);
+  ASSERT_TRUE(c.ok()) << c.error().message;
+  EXPECT_TRUE(c->report.check.closed());
+  EXPECT_EQ(c->report.check.inconsistentEdges, 0u);
+  EXPECT_EQ(c->report.check.degenerate, 0u);
+  EXPECT_EQ(c->report.solid.cells, (std::array<int, 3>{2, 1, 2}));
+  EXPECT_EQ(c->report.solid.solidCells, 3);
+  EXPECT_NEAR(c->report.solid.areaM2, 2 * 18.0 + 3 * 22.0, 1e-9);  // floor, roof and walls
+  EXPECT_NEAR(c->report.solid.nutAreaM2, c->report.solid.areaM2, 1e-9);
+}
+
 TEST(ObjInput, GroupsSplitObjectsWhenThereIsNoO) {
   auto obj = readObj(writeFile("groups.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\ng a\nf 1 2 3\ng b\nf 1 3 2\ng a\nf 2 1 3\n"));
   ASSERT_TRUE(obj.ok());

@@ -9,6 +9,8 @@
 #include <fstream>
 #include <string>
 
+#include <glm/geometric.hpp>
+
 #include <meshref/embree_renderer.hpp>
 #include <meshref/image_compare.hpp>
 #include <meshref/obj.hpp>
@@ -77,7 +79,7 @@ TEST(ObjReader, ReadsTheTwoMaterialCube) {
   EXPECT_EQ(roof, 2);
 }
 
-TEST(ObjReader, FansPolygonsAndReadsOpacity) {
+TEST(ObjReader, FansConvexPolygonsAndReadsOpacity) {
   writeFile("pentagon.mtl", "newmtl glass\nKd 0.2 0.4 0.6\nd 0.25\nnewmtl tinted\nKd 1 1 1\nTr 0.75\n");
   const std::string path = writeFile("pentagon.obj",
                                      "mtllib pentagon.mtl\nv 0 0 0\nv 2 0 0\nv 3 1 0\nv 1 2 0\nv -1 1 0\nv 9 9 9\n"
@@ -93,6 +95,24 @@ TEST(ObjReader, FansPolygonsAndReadsOpacity) {
   // Bounds cover the vertices faces use; vertex 6 is used by none.
   EXPECT_EQ(mesh->bounds.min, glm::dvec3(-1, 0, 0));
   EXPECT_EQ(mesh->bounds.max, glm::dvec3(3, 2, 0));
+}
+
+TEST(ObjReader, NonConvexPolygonsKeepTheirShape) {
+  // An L-shaped floor (area 18 m^2) written from the corner whose fan would cover the notch too
+  // (30 m^2 of triangles, a third of them outside the L).
+  const std::string path =
+      writeFile("l_floor.obj", "v 6 0 0\nv 6 0 2\nv 2 0 2\nv 2 0 5\nv 0 0 5\nv 0 0 0\nf 1 6 5 4 3 2\n");
+  auto mesh = readObj(path);
+  ASSERT_TRUE(mesh.ok()) << mesh.error().message;
+  ASSERT_EQ(mesh->triangles.size(), 4u);
+  double area = 0;
+  for (const auto& t : mesh->triangles) {
+    const glm::dvec3 n =
+        glm::cross(mesh->positions[t[1]] - mesh->positions[t[0]], mesh->positions[t[2]] - mesh->positions[t[0]]);
+    EXPECT_GT(n.y, 0) << "every triangle faces the face's way (up)";
+    area += 0.5 * glm::length(n);
+  }
+  EXPECT_NEAR(area, 18.0, 1e-12);
 }
 
 TEST(ObjReader, ReadsCrlfLineEnds) {

@@ -6,6 +6,7 @@
 #include <meshref/obj.hpp>
 
 #include <nut/png_io.hpp>
+#include <nut/polygon.hpp>
 
 #include <algorithm>
 #include <charconv>
@@ -118,6 +119,7 @@ Result<TriangleMesh> readObj(const std::string& path) {
 
   std::vector<bool> used(vertexCount, false);
   std::vector<std::uint32_t> corners;
+  std::vector<glm::dvec3> cornerPoints;
   for (const tinyobj::shape_t& shape : shapes) {
     std::size_t first = 0;
     for (std::size_t f = 0; f < shape.mesh.num_face_vertices.size(); ++f) {
@@ -144,9 +146,11 @@ Result<TriangleMesh> readObj(const std::string& path) {
         }
         material = defaultMaterial;
       }
-      // A fan around the first corner: exact for the convex polygons exporters write.
-      for (std::size_t k = 1; k + 1 < n; ++k) {
-        mesh.triangles.push_back({corners[0], corners[k], corners[k + 1]});
+      // Non-convex faces too (an L-shaped floor), as the converter reads them (nut/polygon.hpp).
+      cornerPoints.clear();
+      for (std::uint32_t c : corners) cornerPoints.push_back(mesh.positions[c]);
+      for (const auto& [a, b, c] : triangulatePolygon(cornerPoints)) {
+        mesh.triangles.push_back({corners[a], corners[b], corners[c]});
         mesh.triangleMaterial.push_back(material);
       }
     }

@@ -3,6 +3,7 @@
 #include <converter/mesh.hpp>
 
 #include <nut/png_io.hpp>
+#include <nut/polygon.hpp>
 
 #include <algorithm>
 #include <charconv>
@@ -244,6 +245,7 @@ Result<ObjContents> readObj(const std::string& path, const ObjReadOptions& optio
   int material = -1;  // -1: none named yet
   long long droppedFaces = 0;
   std::vector<std::uint32_t> corners;
+  std::vector<glm::dvec3> cornerPoints;
   std::string error;
 
   forEachLine(*text, [&](long long line, std::string_view l) {
@@ -270,10 +272,11 @@ Result<ObjContents> readObj(const std::string& path, const ObjReadOptions& optio
       }
       if (material < 0) material = table.fallback();
       ObjectBuilder& object = objects[current];
-      const std::uint32_t a = object.vertex(corners[0], positions);
-      for (std::size_t k = 1; k + 1 < corners.size(); ++k) {
-        object.mesh.triangles.push_back(
-            {a, object.vertex(corners[k], positions), object.vertex(corners[k + 1], positions)});
+      cornerPoints.clear();
+      for (std::uint32_t c : corners) cornerPoints.push_back(positions[c]);
+      for (const auto& [a, b, c] : triangulatePolygon(cornerPoints)) {
+        object.mesh.triangles.push_back({object.vertex(corners[a], positions), object.vertex(corners[b], positions),
+                                         object.vertex(corners[c], positions)});
         object.mesh.triangleMaterial.push_back(static_cast<std::uint16_t>(material));
       }
     } else if (key.size() == 1 && key.front() == splitKey) {
