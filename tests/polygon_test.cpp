@@ -64,7 +64,8 @@ void expectTriangulates(const Outline& ccw, const Plane& plane, std::size_t star
   }
   std::vector<glm::dvec3> corners;
   for (const glm::dvec2& p : o) corners.push_back(plane.at(p));
-  const auto triangles = triangulatePolygon(corners);
+  std::vector<std::array<std::uint32_t, 3>> triangles;
+  triangulatePolygon(corners, triangles);
   ASSERT_EQ(triangles.size(), o.size() - 2) << what;
   const double area = signedArea(o);
   double sum = 0;
@@ -102,7 +103,8 @@ TEST(TriangulatePolygon, ConvexPolygonsGiveTheFanOfTheFirstCorner) {
       Outline o = regular(n);
       if (reversed) std::reverse(o.begin(), o.end());
       for (const glm::dvec2& p : o) corners.push_back(plane.at(p));
-      const auto triangles = triangulatePolygon(corners);
+      std::vector<std::array<std::uint32_t, 3>> triangles;
+      triangulatePolygon(corners, triangles);
       ASSERT_EQ(triangles.size(), static_cast<std::size_t>(n - 2));
       for (std::uint32_t k = 1; k + 1 < static_cast<std::uint32_t>(n); ++k)
         EXPECT_EQ(triangles[k - 1], (std::array<std::uint32_t, 3>{0, k, k + 1})) << n << " corners";
@@ -150,12 +152,14 @@ TEST(TriangulatePolygon, CollinearCornersGiveNoFlatTriangle) {
 TEST(TriangulatePolygon, DegenerateInputStillGivesNMinusTwoTriangles) {
   // All corners on one line, or fewer than three: no area to cover, no crash, the count OBJ
   // readers expect.
-  const std::vector<glm::dvec3> line{{0, 0, 0}, {1, 1, 1}, {2, 2, 2}, {3, 3, 3}};
-  EXPECT_EQ(triangulatePolygon(line).size(), 2u);
-  EXPECT_TRUE(triangulatePolygon(std::vector<glm::dvec3>{{0, 0, 0}, {1, 0, 0}}).empty());
+  std::vector<std::array<std::uint32_t, 3>> triangles{{7, 7, 7}};  // replaced, not appended to
+  triangulatePolygon(std::vector<glm::dvec3>{{0, 0, 0}, {1, 1, 1}, {2, 2, 2}, {3, 3, 3}}, triangles);
+  EXPECT_EQ(triangles.size(), 2u);
+  triangulatePolygon(std::vector<glm::dvec3>{{0, 0, 0}, {1, 0, 0}}, triangles);
+  EXPECT_TRUE(triangles.empty());
   // A bow tie (self-intersecting): every corner is used, nothing crashes.
-  const std::vector<glm::dvec3> bowTie{{0, 0, 0}, {1, 1, 0}, {1, 0, 0}, {0, 1, 0}};
-  EXPECT_EQ(triangulatePolygon(bowTie).size(), 2u);
+  triangulatePolygon(std::vector<glm::dvec3>{{0, 0, 0}, {1, 1, 0}, {1, 0, 0}, {0, 1, 0}}, triangles);
+  EXPECT_EQ(triangles.size(), 2u);
 }
 
 }  // namespace

@@ -120,6 +120,7 @@ Result<TriangleMesh> readObj(const std::string& path) {
   std::vector<bool> used(vertexCount, false);
   std::vector<std::uint32_t> corners;
   std::vector<glm::dvec3> cornerPoints;
+  std::vector<std::array<std::uint32_t, 3>> faceTriangles;
   for (const tinyobj::shape_t& shape : shapes) {
     std::size_t first = 0;
     for (std::size_t f = 0; f < shape.mesh.num_face_vertices.size(); ++f) {
@@ -149,7 +150,8 @@ Result<TriangleMesh> readObj(const std::string& path) {
       // Non-convex faces too (an L-shaped floor), as the converter reads them (nut/polygon.hpp).
       cornerPoints.clear();
       for (std::uint32_t c : corners) cornerPoints.push_back(mesh.positions[c]);
-      for (const auto& [a, b, c] : triangulatePolygon(cornerPoints)) {
+      triangulatePolygon(cornerPoints, faceTriangles);
+      for (const auto& [a, b, c] : faceTriangles) {
         mesh.triangles.push_back({corners[a], corners[b], corners[c]});
         mesh.triangleMaterial.push_back(material);
       }

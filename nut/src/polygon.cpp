@@ -40,10 +40,13 @@ std::vector<glm::dvec2> flatten(std::span<const glm::dvec3> corners) {
 
 }  // namespace
 
-std::vector<std::array<std::uint32_t, 3>> triangulatePolygon(std::span<const glm::dvec3> corners) {
-  std::vector<std::array<std::uint32_t, 3>> triangles;
-  if (corners.size() < 3) return triangles;
-  triangles.reserve(corners.size() - 2);
+void triangulatePolygon(std::span<const glm::dvec3> corners, std::vector<std::array<std::uint32_t, 3>>& triangles) {
+  triangles.clear();
+  if (corners.size() < 3) return;
+  if (corners.size() == 3) {  // most faces
+    triangles.push_back({0, 1, 2});
+    return;
+  }
   const std::vector<glm::dvec2> flat = flatten(corners);
   std::vector<std::uint32_t> left(corners.size());
   std::iota(left.begin(), left.end(), 0u);
@@ -94,7 +97,6 @@ std::vector<std::array<std::uint32_t, 3>> triangulatePolygon(std::span<const glm
     }
   }
   for (std::size_t k = 1; k + 1 < left.size(); ++k) triangles.push_back({left[0], left[k], left[k + 1]});
-  return triangles;
 }
 
 }  // namespace nut

@@ -246,6 +246,7 @@ Result<ObjContents> readObj(const std::string& path, const ObjReadOptions& optio
   long long droppedFaces = 0;
   std::vector<std::uint32_t> corners;
   std::vector<glm::dvec3> cornerPoints;
+  std::vector<std::array<std::uint32_t, 3>> faceTriangles;
   std::string error;
 
   forEachLine(*text, [&](long long line, std::string_view l) {
@@ -274,7 +275,8 @@ Result<ObjContents> readObj(const std::string& path, const ObjReadOptions& optio
       ObjectBuilder& object = objects[current];
       cornerPoints.clear();
       for (std::uint32_t c : corners) cornerPoints.push_back(positions[c]);
-      for (const auto& [a, b, c] : triangulatePolygon(cornerPoints)) {
+      triangulatePolygon(cornerPoints, faceTriangles);
+      for (const auto& [a, b, c] : faceTriangles) {
         object.mesh.triangles.push_back({object.vertex(corners[a], positions), object.vertex(corners[b], positions),
                                          object.vertex(corners[c], positions)});
         object.mesh.triangleMaterial.push_back(static_cast<std::uint16_t>(material));

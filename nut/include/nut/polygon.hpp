@@ -17,8 +17,9 @@
 
 namespace nut {
 
-// Triangles as indices into `corners`, each in the polygon's own winding: corners.size() - 2 of
-// them for a polygon of at least three corners, none for fewer.
-std::vector<std::array<std::uint32_t, 3>> triangulatePolygon(std::span<const glm::dvec3> corners);
+// Sets `triangles` to indices into `corners`, each triangle in the polygon's own winding:
+// corners.size() - 2 of them for a polygon of at least three corners, none for fewer. (An output
+// argument: a reader reuses one vector for every face.)
+void triangulatePolygon(std::span<const glm::dvec3> corners, std::vector<std::array<std::uint32_t, 3>>& triangles);
 
 }  // namespace nut
