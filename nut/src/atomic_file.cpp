@@ -19,7 +19,7 @@ std::filesystem::path temporarySibling(const std::filesystem::path& path) {
 std::string cannotCreate(const std::filesystem::path& path, int error) {
   const std::filesystem::path folder = path.parent_path().empty() ? "." : path.parent_path();
   std::error_code ignored;
-  std::string why = std::strerror(error);
+  std::string why = error != 0 ? std::strerror(error) : "the system gave no reason";
   if (!std::filesystem::exists(folder, ignored))
     why = "there is no folder " + folder.string();
   else if (!std::filesystem::is_directory(folder, ignored))
