@@ -152,6 +152,25 @@ TEST(ObjInput, NonConvexFacesKeepTheirShape) {
   EXPECT_NEAR(c->report.solid.nutAreaM2, c->report.solid.areaM2, 1e-9);
 }
 
+TEST(ObjInput, AFaceWithAHoleJoinedByABridgeKeepsItsHole) {
+  // A 9 m square block around a 3 m courtyard, 3 m tall, whose floor and roof are each one face:
+  // the outline, a bridge to the courtyard's outline run the other way, and back. The bridge's
+  // ends are corners met twice; they must stay, or the face crosses itself.
+  const std::string obj =
+      "v 0 0 0\nv 9 0 0\nv 9 0 9\nv 0 0 9\nv 3 0 3\nv 6 0 3\nv 6 0 6\nv 3 0 6\n"
+      "v 0 3 0\nv 9 3 0\nv 9 3 9\nv 0 3 9\nv 3 3 3\nv 6 3 3\nv 6 3 6\nv 3 3 6\n"
+      "f 1 2 3 4 1 5 8 7 6 5\nf 13 14 15 16 13 9 12 11 10 9\n"
+      "f 1 9 10 2\nf 2 10 11 3\nf 3 11 12 4\nf 4 12 9 1\n"
+      "f 5 13 16 8\nf 8 16 15 7\nf 7 15 14 6\nf 6 14 13 5\n";
+  auto c = convertText("courtyard", obj);
+  ASSERT_TRUE(c.ok()) << c.error().message;
+  EXPECT_TRUE(c->report.check.closed());
+  EXPECT_EQ(c->report.check.inconsistentEdges, 0u);
+  EXPECT_EQ(c->report.solid.cells, (std::array<int, 3>{3, 1, 3}));
+  EXPECT_EQ(c->report.solid.solidCells, 8);  // all but the courtyard
+  EXPECT_NEAR(c->report.solid.areaM2, 2 * 72.0 + 4 * 27.0 + 4 * 9.0, 1e-9);
+}
+
 TEST(ObjInput, GroupsSplitObjectsWhenThereIsNoO) {
   auto obj = readObj(writeFile("groups.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\ng a\nf 1 2 3\ng b\nf 1 3 2\ng a\nf 2 1 3\n"));
   ASSERT_TRUE(obj.ok());

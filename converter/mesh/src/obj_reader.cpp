@@ -201,8 +201,10 @@ std::string readVertex(Tokens& t, std::size_t number, glm::dvec3& p) {
   return {};
 }
 
-// The distinct corners of an `f` line as indices of the `vertexCount` vertices read so far
-// (OBJ counts from 1, or back from the last with negative indices); an error otherwise.
+// The corners of an `f` line as indices of the `vertexCount` vertices read so far (OBJ counts
+// from 1, or back from the last with negative indices), a corner that repeats the one before it
+// left out; an error otherwise. A corner met again later stays: a face with a hole, joined to its
+// outline by a bridge, passes twice through each end of the bridge.
 std::string readFaceCorners(Tokens& t, std::size_t vertexCount, std::vector<std::uint32_t>& corners) {
   corners.clear();
   std::string_view token;
@@ -215,9 +217,16 @@ std::string readFaceCorners(Tokens& t, std::size_t vertexCount, std::vector<std:
       return "face refers to vertex " + std::to_string(index) + ", but only " + std::to_string(vertexCount) +
              " vertices precede it";
     const auto v = static_cast<std::uint32_t>(resolved);
-    if (std::find(corners.begin(), corners.end(), v) == corners.end()) corners.push_back(v);
+    if (corners.empty() || corners.back() != v) corners.push_back(v);
   }
+  while (corners.size() > 1 && corners.back() == corners.front()) corners.pop_back();
   return {};
+}
+
+// Whether a face has three distinct corners.
+bool hasThreeCorners(std::vector<std::uint32_t> corners) {
+  std::sort(corners.begin(), corners.end());
+  return std::unique(corners.begin(), corners.end()) - corners.begin() >= 3;
 }
 
 }  // namespace
@@ -267,7 +276,7 @@ Result<ObjContents> readObj(const std::string& path, const ObjReadOptions& optio
         error = where() + error;
         return;
       }
-      if (corners.size() < 3) {
+      if (!hasThreeCorners(corners)) {
         ++droppedFaces;
         return;
       }

@@ -55,8 +55,10 @@ struct ObjContents {
   std::uintmax_t fileBytes = 0;
 };
 
-// Reads an OBJ file and the MTL files it names (paths relative to the OBJ's folder). Polygons
-// become triangle fans; faces with fewer than three distinct vertices are dropped with a warning.
+// Reads an OBJ file and the MTL files it names (paths relative to the OBJ's folder). Polygons are
+// cut into triangles by ear clipping (nut/polygon.hpp: non-convex faces, and faces with a hole
+// joined by a bridge, keep their shape); faces with fewer than three distinct vertices are
+// dropped with a warning.
 // Errors, naming file and line: unreadable file, a coordinate that is not a finite number, a face
 // index out of range or zero, no faces at all.
 Result<ObjContents> readObj(const std::string& path, const ObjReadOptions& options = {});
