@@ -140,6 +140,19 @@ TEST(TriangulatePolygon, NonConvexPolygonsFromEveryCornerBothWaysInAnyPlane) {
   }
 }
 
+TEST(TriangulatePolygon, AHoleJoinedByABridgeStaysOpen) {
+  // A 10 x 10 square around a 4 x 4 hole, as OBJ writes a face with a hole: the outline, a bridge
+  // from (0, 0) to (3, 3), the hole's outline the other way round, and back over the bridge. The
+  // even-odd test sees the bridge twice, so a triangle over the hole counts as outside.
+  const Outline keyhole{{0, 0}, {10, 0}, {10, 10}, {0, 10}, {0, 0}, {3, 3}, {3, 7}, {7, 7}, {7, 3}, {3, 3}};
+  ASSERT_DOUBLE_EQ(signedArea(keyhole), 84.0);
+  std::mt19937 rng(5);
+  for (std::size_t start = 0; start < keyhole.size(); ++start)
+    for (bool reversed : {false, true})
+      expectTriangulates(keyhole, randomPlane(rng), start, reversed,
+                         "from corner " + std::to_string(start) + (reversed ? " reversed" : ""));
+}
+
 TEST(TriangulatePolygon, CollinearCornersGiveNoFlatTriangle) {
   // A rectangle with a corner in the middle of its bottom edge: the fan's first triangle would be
   // flat; the ears are cut elsewhere.
