@@ -140,6 +140,23 @@ TEST(TriangulatePolygon, NonConvexPolygonsFromEveryCornerBothWaysInAnyPlane) {
   }
 }
 
+TEST(TriangulatePolygon, RandomStarShapedPolygons) {
+  // Corners at increasing angles and random distances from a centre: simple polygons with reflex
+  // corners anywhere, up to 300 of them.
+  std::mt19937 rng(13);
+  std::uniform_real_distribution<double> radius(0.1, 1.0);
+  for (int trial = 0; trial < 60; ++trial) {
+    const int n = 4 + trial * 5;
+    Outline o;
+    for (int i = 0; i < n; ++i) {
+      const double a = 2 * std::numbers::pi * i / n, r = radius(rng);
+      o.emplace_back(r * std::cos(a), r * std::sin(a));
+    }
+    expectTriangulates(o, randomPlane(rng), static_cast<std::size_t>(trial) % o.size(), trial % 2 == 1,
+                       "star of " + std::to_string(n) + " corners, trial " + std::to_string(trial));
+  }
+}
+
 TEST(TriangulatePolygon, AHoleJoinedByABridgeStaysOpen) {
   // A 10 x 10 square around a 4 x 4 hole, as OBJ writes a face with a hole: the outline, a bridge
   // from (0, 0) to (3, 3), the hole's outline the other way round, and back over the bridge. The
