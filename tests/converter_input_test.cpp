@@ -132,6 +132,19 @@ TEST(ObjInput, ReadsObjectsMaterialsAndNegativeIndices) {
   EXPECT_EQ(obj->objects[0].materials[obj->objects[0].triangleMaterial[0]], (Material{255, 0, 0, 255, 0}));
 }
 
+// A conversion of an axis-aligned solid read from polygons: closed, consistently turned, no face
+// lost as degenerate, `solidCells` of its `cells` filled, and its whole surface `areaM2` in them.
+void expectClosedSolid(const Result<Conversion>& c, std::array<int, 3> cells, int solidCells, double areaM2) {
+  ASSERT_TRUE(c.ok()) << c.error().message;
+  EXPECT_TRUE(c->report.check.closed());
+  EXPECT_EQ(c->report.check.inconsistentEdges, 0u);
+  EXPECT_EQ(c->report.check.degenerate, 0u);
+  EXPECT_EQ(c->report.solid.cells, cells);
+  EXPECT_EQ(c->report.solid.solidCells, solidCells);
+  EXPECT_NEAR(c->report.solid.areaM2, areaM2, 1e-9);
+  EXPECT_NEAR(c->report.solid.nutAreaM2, areaM2, 1e-9);
+}
+
 TEST(ObjInput, NonConvexFacesKeepTheirShape) {
   // An L-shaped prism 3 m tall whose floor and roof are single six-corner faces, written from the
   // corner whose fan would also cover the notch: read as its shape, it is closed and fills the
@@ -141,15 +154,7 @@ TEST(ObjInput, NonConvexFacesKeepTheirShape) {
       "v 6 3 0\nv 6 3 2\nv 2 3 2\nv 2 3 5\nv 0 3 5\nv 0 3 0\n"
       "f 1 2 3 4 5 6\nf 7 12 11 10 9 8\n"
       "f 1 7 8 2\nf 2 8 9 3\nf 3 9 10 4\nf 4 10 11 5\nf 5 11 12 6\nf 6 12 7 1\n";
-  auto c = convertText("l_prism", obj);
-  ASSERT_TRUE(c.ok()) << c.error().message;
-  EXPECT_TRUE(c->report.check.closed());
-  EXPECT_EQ(c->report.check.inconsistentEdges, 0u);
-  EXPECT_EQ(c->report.check.degenerate, 0u);
-  EXPECT_EQ(c->report.solid.cells, (std::array<int, 3>{2, 1, 2}));
-  EXPECT_EQ(c->report.solid.solidCells, 3);
-  EXPECT_NEAR(c->report.solid.areaM2, 2 * 18.0 + 3 * 22.0, 1e-9);  // floor, roof and walls
-  EXPECT_NEAR(c->report.solid.nutAreaM2, c->report.solid.areaM2, 1e-9);
+  expectClosedSolid(convertText("l_prism", obj), {2, 1, 2}, 3, 2 * 18.0 + 3 * 22.0);  // floor, roof, walls
 }
 
 TEST(ObjInput, AFaceWithAHoleJoinedByABridgeKeepsItsHole) {
@@ -162,13 +167,8 @@ TEST(ObjInput, AFaceWithAHoleJoinedByABridgeKeepsItsHole) {
       "f 1 2 3 4 1 5 8 7 6 5\nf 13 14 15 16 13 9 12 11 10 9\n"
       "f 1 9 10 2\nf 2 10 11 3\nf 3 11 12 4\nf 4 12 9 1\n"
       "f 5 13 16 8\nf 8 16 15 7\nf 7 15 14 6\nf 6 14 13 5\n";
-  auto c = convertText("courtyard", obj);
-  ASSERT_TRUE(c.ok()) << c.error().message;
-  EXPECT_TRUE(c->report.check.closed());
-  EXPECT_EQ(c->report.check.inconsistentEdges, 0u);
-  EXPECT_EQ(c->report.solid.cells, (std::array<int, 3>{3, 1, 3}));
-  EXPECT_EQ(c->report.solid.solidCells, 8);  // all but the courtyard
-  EXPECT_NEAR(c->report.solid.areaM2, 2 * 72.0 + 4 * 27.0 + 4 * 9.0, 1e-9);
+  // All cells but the courtyard's; floor, roof, outer and courtyard walls.
+  expectClosedSolid(convertText("courtyard", obj), {3, 1, 3}, 8, 2 * 72.0 + 4 * 27.0 + 4 * 9.0);
 }
 
 TEST(ObjInput, GroupsSplitObjectsWhenThereIsNoO) {
