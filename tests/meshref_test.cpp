@@ -115,6 +115,17 @@ TEST(ObjReader, NonConvexPolygonsKeepTheirShape) {
   EXPECT_NEAR(area, 18.0, 1e-12);
 }
 
+TEST(ObjReader, ACornerRepeatingTheOneBeforeItIsLeftOut) {
+  // "f 1 2 2 3 4 1": a square with its second corner written twice and its first closing it
+  // again; read as the square, two triangles with no flat one, as the converter reads it.
+  const std::string path = writeFile("repeats.obj", "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 2 3 4 1\nf 1 1 2\n");
+  auto mesh = readObj(path);
+  ASSERT_TRUE(mesh.ok()) << mesh.error().message;
+  ASSERT_EQ(mesh->triangles.size(), 2u);  // "f 1 1 2" has two corners left: no face
+  EXPECT_EQ(mesh->triangles[0], (std::array<std::uint32_t, 3>{0, 1, 2}));
+  EXPECT_EQ(mesh->triangles[1], (std::array<std::uint32_t, 3>{0, 2, 3}));
+}
+
 TEST(ObjReader, ReadsCrlfLineEnds) {
   auto mesh = readObj(writeFile("crlf.obj", "v 0 0 0\r\nv 1 0 0\r\nv 0 1 0\r\nf 1 2 3\r\n"));
   ASSERT_TRUE(mesh.ok()) << mesh.error().message;

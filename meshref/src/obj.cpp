@@ -131,11 +131,14 @@ Result<TriangleMesh> readObj(const std::string& path) {
         if (index < 0 || static_cast<std::size_t>(index) >= vertexCount)
           return Error{path + ": a face of '" + shape.name + "' refers to vertex " + std::to_string(index + 1) +
                        ", but the file has " + std::to_string(vertexCount) + " vertices"};
-        corners.push_back(static_cast<std::uint32_t>(index));
+        // A corner that repeats the one before it is left out, as the converter's reader does.
+        if (corners.empty() || corners.back() != static_cast<std::uint32_t>(index))
+          corners.push_back(static_cast<std::uint32_t>(index));
         used[static_cast<std::size_t>(index)] = true;
       }
+      while (corners.size() > 1 && corners.back() == corners.front()) corners.pop_back();
       first += n;
-      if (n < 3) continue;
+      if (corners.size() < 3) continue;
       const int id = f < shape.mesh.material_ids.size() ? shape.mesh.material_ids[f] : -1;
       std::uint32_t material = 0;
       if (id >= 0 && static_cast<std::size_t>(id) < objMaterials.size()) {
