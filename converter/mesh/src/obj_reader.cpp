@@ -223,10 +223,13 @@ std::string readFaceCorners(Tokens& t, std::size_t vertexCount, std::vector<std:
   return {};
 }
 
-// Whether a face has three distinct corners.
-bool hasThreeCorners(std::vector<std::uint32_t> corners) {
-  std::sort(corners.begin(), corners.end());
-  return std::unique(corners.begin(), corners.end()) - corners.begin() >= 3;
+// Whether a face has three distinct corners. readFaceCorners leaves no two neighbours equal, so
+// three corners are three distinct ones (most faces: no copy).
+bool hasThreeCorners(const std::vector<std::uint32_t>& corners) {
+  if (corners.size() <= 3) return corners.size() == 3;
+  std::vector<std::uint32_t> sorted = corners;
+  std::sort(sorted.begin(), sorted.end());
+  return std::unique(sorted.begin(), sorted.end()) - sorted.begin() >= 3;
 }
 
 }  // namespace
