@@ -413,8 +413,9 @@ class Exporter {
     const auto coveredCells = [&](const glm::ivec3& first, const glm::ivec3& last) {
       return boundsOnly_ && covered(inst.frame, {cellBox(block, tile, first).lo, cellBox(block, tile, last).hi});
     };
-    if (coveredCells({0, 0, 0}, n - 1)) return;
-    const auto tilePlanes = cuttingPlanes(*inst.planes, inst.frame, tileBox(block, tile));
+    const Box wholeTile = tileBox(block, tile);
+    if (boundsOnly_ && covered(inst.frame, wholeTile)) return;
+    const auto tilePlanes = cuttingPlanes(*inst.planes, inst.frame, wholeTile);
     if (!tilePlanes) return;
     for (int kz = 0; kz < n.z; ++kz) {
       const int z = static_cast<int>(visitOrder(kz, n.z));
