@@ -1,7 +1,8 @@
 // samples/make_samples.cpp — `make_samples OUTDIR`: builds the hand-made sample hierarchies
-// (facade, building, solids showcase) through the core API, checks that each one round-trips
-// through compile/validate/decode unchanged, writes them as HNI PNGs into OUTDIR, and prints one
-// summary line per file on stderr. Any failure prints one "error: ..." line and exits non-zero.
+// (facade, building, solids showcase, cube rotations) through the core API, checks that each one
+// round-trips through compile/validate/decode unchanged, writes them as HNI PNGs into OUTDIR, and
+// prints one summary line per file on stderr. Any failure prints one "error: ..." line and exits
+// non-zero.
 #include <cstdio>
 #include <exception>
 #include <filesystem>
@@ -26,6 +27,7 @@ int main(int argc, char** argv) {
       {"facade.png", "Facade with a wrapped window bay (paper Fig. 3a)", samples::buildFacadeSample},
       {"building.png", "Mixed-use building with hipped roof (compare paper Fig. 12)", samples::buildBuildingSample},
       {"solids.png", "All 69 solids, a domed pavilion and a rotated gatehouse", samples::buildSolidsSample},
+      {"rotations.png", "One tripod turned by each of the 24 cube rotations", samples::buildRotationsSample},
   };
   try {
     std::error_code ec;

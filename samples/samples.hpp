@@ -11,5 +11,7 @@ nut::Hierarchy buildFacadeSample();
 nut::Hierarchy buildBuildingSample();
 // Every one of the 69 solids in a cabinet, plus a pavilion and a gatehouse built from them.
 nut::Hierarchy buildSolidsSample();
+// One small asymmetric block shown by each of the 24 cube rotations, on a 6 x 4 grid.
+nut::Hierarchy buildRotationsSample();
 
 }  // namespace samples

@@ -147,7 +147,7 @@ TEST_P(SampleRender, ContentBoundsAreTheCoarseMeshVertexBoundsToTheBit) {
   }
 }
 
-INSTANTIATE_TEST_SUITE_P(Samples, SampleRender, ::testing::Values("facade", "building", "solids"));
+INSTANTIATE_TEST_SUITE_P(Samples, SampleRender, ::testing::Values("facade", "building", "solids", "rotations"));
 
 }  // namespace
 }  // namespace nut

@@ -57,7 +57,7 @@ TEST_P(SampleMatchesCpu, HeuristicLookup) {
   expectSameImage(s);
 }
 
-INSTANTIATE_TEST_SUITE_P(Samples, SampleMatchesCpu, ::testing::Values("facade", "building", "solids"));
+INSTANTIATE_TEST_SUITE_P(Samples, SampleMatchesCpu, ::testing::Values("facade", "building", "solids", "rotations"));
 
 TEST(GlMatchesCpu, ExactLookup) {
   Scene s = sampleScene("building", 640, 360);
