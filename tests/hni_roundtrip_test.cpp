@@ -247,8 +247,8 @@ INSTANTIATE_TEST_SUITE_P(
                           h.blocks[1] = Block::fromSizes({{sizes, {1.0}, sizes}});  // 65 x 65 = 4225 px wide
                         },
                         "block 1: data component 4225 px wide (n_x * n_z) exceeds 4096"},
-        BrokenHierarchy{"Materials", [](Hierarchy& h) { h.materials.resize(65537); },
-                        "65537 materials exceed the limit of 65536"},
+        BrokenHierarchy{"Materials", [](Hierarchy& h) { h.materials.resize(65536); },
+                        "65536 materials exceed the limit of 65535"},
         BrokenHierarchy{"TextureInfos", [](Hierarchy& h) { h.textures.resize(256); },
                         "256 texture infos exceed the limit of 255"},
         BrokenHierarchy{"TextureOffset",

@@ -430,7 +430,7 @@ Result<Image> compile(const Hierarchy& h, const CompileOptions& options) {
   if (Status s = checkHierarchy(h); !s) return s.error();
   if (h.blocks.size() > 0xffff) return Error{"more than 65535 blocks"};
   if (h.materials.size() > static_cast<std::size_t>(format::kMaxMaterials))
-    return Error{std::to_string(h.materials.size()) + " materials exceed the limit of 65536"};
+    return Error{std::to_string(h.materials.size()) + " materials exceed the limit of 65535"};
   if (h.textures.size() > static_cast<std::size_t>(format::kMaxTextureInfos))
     return Error{std::to_string(h.textures.size()) + " texture infos exceed the limit of 255"};
 

@@ -86,11 +86,9 @@ inline constexpr int kCubeRotationCount = 24;
 // The free yaw angle about the sub-block's y axis is a u16 fraction of a full turn.
 inline constexpr int kYawSteps = 65536;
 
-// Exact row: A = 1 where the metadata pixel holds a boundary.
-inline constexpr std::uint8_t kExactHasBoundary = 1;
-
 // Texture index in a data pixel: 0 = none, n = texture-info entry n - 1.
 inline constexpr int kMaxTextureInfos = 255;
-inline constexpr int kMaxMaterials = 65536;
+// Material indices are u16, and so is the file record's material count.
+inline constexpr int kMaxMaterials = 65535;
 
 }  // namespace nut::format
