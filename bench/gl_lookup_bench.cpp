@@ -5,7 +5,7 @@
 //   heuristic  per axis hni_access.glsl's stepOf + metaTexel + cellHeuristic, then the fetch
 //   exact      per axis pixelOf + metaTexel + cellExact (a second, exact-row texel), then the fetch
 //   binary     per axis a binary search over a texture row of the interior boundaries, then the fetch
-// Why: issue 2's targets (heuristic <= 1.3x native, exact <= 1.6x) are about the GPU, where the
+// Why: the lookup targets (heuristic <= 1.3x native, exact <= 1.6x) are about the GPU, where the
 // paper measured 1.41x; on a CPU the ratio is about 1.9x (docs/BENCHMARKS.md, "Lookup cost").
 //
 // The scene is lookup_bench's (lookup_scene.hpp: the same widths, metadata and data image). The

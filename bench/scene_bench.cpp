@@ -2,7 +2,7 @@
 // 40 x 40 grid of the sample building, 1,600 HNIs sharing one image, from above the whole city and
 // from a street inside it, at 640 x 360 on one thread. The scene walks a grid over the ground and
 // casts each ray only into the HNIs it meets before its nearest hit; the baseline casts every ray
-// into every HNI whose box it meets (a caster per HNI, as the scene did at first), which costs
+// into every HNI whose box it meets (a caster per HNI), which costs
 // pixels times buildings. docs/BENCHMARKS.md records a run.
 #include <benchmark/benchmark.h>
 

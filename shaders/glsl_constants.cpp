@@ -1,7 +1,7 @@
 // glsl_constants OUT.glsl — writes the GLSL twin of the C++ constants the shaders depend on: the
 // HNI format (nut/format.hpp), the ray caster's limits (nut/raycast.hpp), the shared camera and
 // shading (nut/camera.hpp), the 24 cube rotations and the shapes of the 69 solids. The build runs
-// it, so C++ and GLSL cannot drift (STYLE.md habit 5); the output is never committed.
+// it, so C++ and GLSL cannot drift; the output is never committed.
 //
 // The solid table follows the rule of docs/FORMAT.md ("Solids"); before writing it, the program
 // checks it against nut::solidContains on a grid of points and fails the build on a mismatch.

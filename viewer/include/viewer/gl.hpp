@@ -1,7 +1,7 @@
 // viewer/gl.hpp — the OpenGL 3.3 core functions the GL layer calls, loaded per context.
 //
 // Every back-end hands over its own loader (OSMesaGetProcAddress, eglGetProcAddress,
-// glfwGetProcAddress): libepoxy does not work with OSMesa (DESIGN.md), and one table for all three
+// glfwGetProcAddress): libepoxy does not work with OSMesa, and one table for all three
 // keeps the rendering code free of back-end cases. Calls read `gl.Clear(...)`.
 #pragma once
 
