@@ -68,7 +68,8 @@ void addCompareCommand(CLI::App& app, int& exitCode) {
       app.add_subcommand("compare", "Compare two images of the same size (e.g. an HNI render and a mesh render)");
   cmd->add_option("a", o->a, "First image (PNG)")->required();
   cmd->add_option("b", o->b, "Second image (PNG)")->required();
-  cmd->add_option("--diff", o->diff, "Write a difference picture (PNG), see below");
+  cmd->add_option("--diff", o->diff, "Write a difference picture (PNG), see below")
+      ->check(outputExtension(".png", "PNG"));
   cmd->add_option("--threshold", o->threshold, "A pixel differs when some channel differs by more than this (0..255)")
       ->default_val(8)
       ->check(CLI::Range(0, 255));
@@ -85,7 +86,8 @@ void addCompareCommand(CLI::App& app, int& exitCode) {
       "than the threshold red (both brighter as the difference grows; red is full from 64 up).\n"
       "The exit code is 0 whenever the comparison ran; differences are reported, not failed.\n\n"
       "Example:\n  nut render building.png -o hni.png && nut render-mesh building.obj -o mesh.png\n"
-      "  nut compare hni.png mesh.png --diff diff.png --threshold 8");
+      "  nut compare hni.png mesh.png --diff diff.png --threshold 8\n\n" +
+      std::string(kExitCodesHelp));
   cmd->callback([o, &exitCode] { exitCode = run(*o); });
 }
 

@@ -39,6 +39,22 @@ struct ConvertCliOptions {
   std::string pngEffort = "smallest";
 };
 
+// -o names one HNI when it ends in .png (any case); otherwise a folder.
+bool writesOneHni(const std::string& output) { return lowerExtension(output) == ".png"; }
+
+// -o is an HNI or a folder. A name with another extension is refused rather than made a folder:
+// it most likely asks for a file of another format. A folder whose name has a dot is given with a
+// trailing slash (its extension is then empty), or exists already.
+CLI::Validator hniOrFolder() {
+  return CLI::Validator(
+      [](std::string& path) {
+        std::error_code ec;
+        if (writesOneHni(path) || lowerExtension(path).empty() || fs::is_directory(path, ec)) return std::string();
+        return path + ": writes an HNI (a name ending in .png) or a folder (no extension, or a name ending in /)";
+      },
+      "");
+}
+
 PngEffort effortOf(const ConvertCliOptions& o) {
   return o.pngEffort == "small" ? PngEffort::Small : PngEffort::Smallest;
 }
@@ -258,8 +274,7 @@ int run(const ConvertCliOptions& o) {
   if (!obj) return fail(obj.error().message, kInvalid);
   if (!o.quiet)
     for (const std::string& w : obj->warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
-  const bool toFolder = fs::path(o.output).extension() != ".png";
-  return toFolder ? convertCity(o, *obj, *options) : convertOneBuilding(o, *obj, *options);
+  return writesOneHni(o.output) ? convertOneBuilding(o, *obj, *options) : convertCity(o, *obj, *options);
 }
 
 }  // namespace
@@ -270,8 +285,10 @@ void addConvertCommand(CLI::App& app, int& exitCode) {
   cmd->add_option("input", o->input, "OBJ file (its MTL files beside it)")->required();
   cmd->add_option(
          "-o,--output", o->output,
-         "Output HNI (.png: the whole file as one building), or a folder (one HNI per o/g object and city.json)")
-      ->required();
+         "Output HNI (.png: the whole file as one building), or a folder (no extension, or a name ending in /: "
+         "one HNI per o/g object and city.json)")
+      ->required()
+      ->check(hniOrFolder());
   cmd->add_option("--tolerance", o->toleranceM,
                   "Planes closer than this merge; slopes within it become wedges (metres)")
       ->default_val(0.01)
@@ -281,9 +298,11 @@ void addConvertCommand(CLI::App& app, int& exitCode) {
       ->check(CLI::Range(0.0, 10.0));
   cmd->add_flag("--z-up", o->zUp, "The OBJ is z-up (turned to the y-up world frame)");
   cmd->add_option("--complement", o->complement,
-                  "Write the faces the HNI does not show as OBJ + MTL (world coordinates)");
+                  "Write the faces the HNI does not show as OBJ + MTL (world coordinates)")
+      ->check(outputExtension(".obj", "OBJ"));
   cmd->add_option("--report", o->report,
-                  "Write the conversion report as JSON (timings, grid, blocks, bytes, surface fractions)");
+                  "Write the conversion report as JSON (timings, grid, blocks, bytes, surface fractions)")
+      ->check(outputExtension(".json", "JSON"));
   cmd->add_flag("--quiet", o->quiet, "No progress bar, summary or warnings on stderr");
   cmd->add_flag("--no-auto-blocks", o->noAutoBlocks, "Do not search for repeated blocks");
   cmd->add_flag("--no-axis-order", o->noAxisOrder,
@@ -309,7 +328,8 @@ void addConvertCommand(CLI::App& app, int& exitCode) {
   cmd->footer(
       "Examples:\n  nut convert samples/obj/highrise.obj -o highrise.png --complement highrise-rest.obj --report "
       "report.json\n"
-      "  nut convert samples/obj/street.obj -o street/        # one HNI per object + street/city.json");
+      "  nut convert samples/obj/street.obj -o street/        # one HNI per object + street/city.json\n\n" +
+      std::string(kExitCodesHelp));
   cmd->callback([o, &exitCode] { exitCode = run(*o); });
 }
 

@@ -45,7 +45,9 @@ void addExportMeshCommand(CLI::App& app, int& exitCode) {
   auto o = std::make_shared<ExportMeshOptions>();
   CLI::App* cmd = app.add_subcommand("export-mesh", "Export an HNI's solid cells as a triangle mesh (OBJ + MTL)");
   cmd->add_option("input", o->input, "HNI image (PNG)")->required();
-  cmd->add_option("-o,--output", o->output, "Output mesh (OBJ); the materials go beside it as .mtl")->required();
+  cmd->add_option("-o,--output", o->output, "Output mesh (OBJ); the materials go beside it as .mtl")
+      ->required()
+      ->check(outputExtension(".obj", "OBJ"));
   // CLI::PositiveNumber's message prints the whole double range; say it plainly.
   const auto positive = [](const std::string& text) {
     char* end = nullptr;
@@ -59,7 +61,8 @@ void addExportMeshCommand(CLI::App& app, int& exitCode) {
   cmd->add_option("--max-triangles", o->mesh.maxTriangles, "Fail rather than write more triangles than this")
       ->default_val(o->mesh.maxTriangles)
       ->check(positive);
-  cmd->footer("Example:\n  nut export-mesh samples/hni/building.png -o building.obj --tolerance 0.002");
+  cmd->footer("Example:\n  nut export-mesh samples/hni/building.png -o building.obj --tolerance 0.002\n\n" +
+              std::string(kExitCodesHelp));
   cmd->callback([o, &exitCode] { exitCode = run(*o); });
 }
 

@@ -169,7 +169,9 @@ void addInfoCommand(CLI::App& app, int& exitCode) {
       "Also measure what each kind of record costs in the PNG (the file re-encoded with that kind's pixels zero; "
       "a few seconds)");
   cmd->footer(
-      "Examples:\n  nut info samples/hni/building.png --json\n  nut info samples/hni/building.png --blocks --bytes");
+      "Examples:\n  nut info samples/hni/building.png --json\n"
+      "  nut info samples/hni/building.png --blocks --bytes\n\n" +
+      std::string(kExitCodesHelp));
   cmd->callback([options, &exitCode] {
     auto png = readPng(options->path);
     if (!png) {

@@ -132,7 +132,7 @@ void addRenderCommand(CLI::App& app, int& exitCode) {
   cmd->add_option("input", o->input,
                   "HNI image (PNG), or a city manifest (city.json: every building with its complementary mesh)")
       ->required();
-  cmd->add_option("-o,--output", o->output, "Output image (PNG)")->required();
+  cmd->add_option("-o,--output", o->output, "Output image (PNG)")->required()->check(outputExtension(".png", "PNG"));
   o->camera.addTo(*cmd);
   cmd->add_option("--backend", o->backend, "Renderer: cpu (the reference ray caster) or gl (the GLSL ray caster)")
       ->check(CLI::IsMember({"cpu", "gl"}))
@@ -154,14 +154,17 @@ void addRenderCommand(CLI::App& app, int& exitCode) {
                   "Metadata lookup: exact, or the paper's one-fetch heuristic (boundaries within 2 mm)")
       ->check(CLI::IsMember({"heuristic", "exact"}))
       ->default_val("exact");
-  cmd->add_option("--depth", o->depth, "Also write the distance along each ray (metres, +inf for misses) as PFM");
-  cmd->add_option("--stats", o->stats, "Write timing and iteration statistics as JSON");
+  cmd->add_option("--depth", o->depth, "Also write the distance along each ray (metres, +inf for misses) as PFM")
+      ->check(outputExtension(".pfm", "PFM"));
+  cmd->add_option("--stats", o->stats, "Write timing and iteration statistics as JSON")
+      ->check(outputExtension(".json", "JSON"));
   cmd->add_option("--threads", o->threads, "Worker threads (0: all cores)")->check(CLI::NonNegativeNumber);
   cmd->footer(
       "Examples:\n  nut render samples/hni/building.png -o building.png --size 1280x720 --stats stats.json\n"
       "  nut render samples/hni/building.png -o building-gl.png --backend gl --gl egl\n"
       "  nut render carpark.png -o carpark-render.png --mesh carpark-rest.obj\n"
-      "  nut render street/city.json -o street.png        # after nut convert street.obj -o street/");
+      "  nut render street/city.json -o street.png        # after nut convert street.obj -o street/\n\n" +
+      std::string(kExitCodesHelp));
   cmd->callback([o, &exitCode] { exitCode = run(*o); });
 }
 

@@ -105,14 +105,15 @@ void addRenderMeshCommand(CLI::App& app, int& exitCode) {
       app.add_subcommand("render-mesh", "Render an OBJ mesh with the reference renderer (Embree) or OpenGL");
   cmd->add_option("input", o->input, "Mesh (OBJ; materials from the MTL files it names: Kd colour, d opacity)")
       ->required();
-  cmd->add_option("-o,--output", o->output, "Output image (PNG)")->required();
+  cmd->add_option("-o,--output", o->output, "Output image (PNG)")->required()->check(outputExtension(".png", "PNG"));
   o->camera.addTo(*cmd);
   cmd->add_option("--backend", o->backend, "Renderer: cpu (Embree ray tracing) or gl (OpenGL rasterisation)")
       ->check(CLI::IsMember({"cpu", "gl"}))
       ->default_val("cpu");
   o->gl.addTo(*cmd);
-  cmd->add_option("--depth", o->depth, "Also write the distance along each ray (metres, +inf for misses) as PFM");
-  cmd->add_option("--stats", o->stats, "Write timing statistics as JSON");
+  cmd->add_option("--depth", o->depth, "Also write the distance along each ray (metres, +inf for misses) as PFM")
+      ->check(outputExtension(".pfm", "PFM"));
+  cmd->add_option("--stats", o->stats, "Write timing statistics as JSON")->check(outputExtension(".json", "JSON"));
   cmd->add_option("--threads", o->threads, "Worker threads of the cpu back-end (0: all cores)")
       ->check(CLI::NonNegativeNumber);
   cmd->footer(
@@ -120,7 +121,8 @@ void addRenderMeshCommand(CLI::App& app, int& exitCode) {
       "HNI's root block, so a mesh and its HNI render from the same view.\n\n"
       "Example:\n  nut render-mesh building.obj -o building-mesh.png --size 1280x720 --stats stats.json\n"
       "  nut compare building-hni.png building-mesh.png --diff diff.png\n"
-      "  nut render-mesh building.obj -o building-raster.png --backend gl");
+      "  nut render-mesh building.obj -o building-raster.png --backend gl\n\n" +
+      std::string(kExitCodesHelp));
   cmd->callback([o, &exitCode] { exitCode = run(*o); });
 }
 

@@ -1,5 +1,5 @@
 // `nut validate FILE.png`: exit 0 when the file is a valid HNI, 1 when it is not (with the
-// reason), 2 when it cannot be read as a PNG.
+// reason), 2 when it cannot be read as a PNG (or the command line is wrong).
 #include <cstdio>
 #include <memory>
 #include <string>
@@ -15,7 +15,8 @@ void addValidateCommand(CLI::App& app, int& exitCode) {
   auto path = std::make_shared<std::string>();
   CLI::App* cmd = app.add_subcommand("validate", "Check that a PNG is a valid HNI (every rule of docs/FORMAT.md)");
   cmd->add_option("file", *path, "HNI image (PNG)")->required();
-  cmd->footer("Example:\n  nut validate samples/hni/building.png\n\nExit status: 0 valid, 1 invalid, 2 unreadable.");
+  cmd->footer("Example:\n  nut validate samples/hni/building.png\n\n"
+              "Exit status: 0 valid, 1 invalid (with the reason), 2 unreadable or a usage error.");
   cmd->callback([path, &exitCode] {
     auto png = readPng(*path);
     if (!png) {

@@ -1,15 +1,17 @@
 // The commands users check and look at results with, run as a user runs them: `nut validate`,
 // `nut compare`, `nut export-mesh`, `nut render-mesh`, `nut render --depth --stats` and `nut
-// info`. Each test knows its answer independently (images built here with known differences, the
-// HNI's own decode, the PFM layout), and bad input must give one `error:` line and the documented
-// exit status: 1 invalid input or usage, 2 unreadable. (`nut convert` and the scene renders:
-// converter_cli_test.cpp.)
+// info`; and what `nut` itself answers (unknown commands, --version, output names of another
+// format). Each test knows its answer independently (images built here with known differences, the
+// HNI's own decode, the PFM layout, the version in CMakeLists.txt), and bad input must give one
+// `error:` line and the documented exit status: 1 invalid input, 2 usage error or unreadable file.
+// (`nut convert` and the scene renders: converter_cli_test.cpp.)
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <filesystem>
+#include <regex>
 #include <string>
 #include <vector>
 
@@ -146,7 +148,7 @@ TEST(ExportMeshCli, WritesAnObjInsideTheHnisBox) {
   expectOneErrorLine(nut("export-mesh " + out("not-an-hni.png") + " -o " + out("grey.obj")), 1, "invalid HNI");
   EXPECT_FALSE(fs::exists(out("grey.obj")));
   const CliRun usage = nut("export-mesh " + facade + " -o " + out("x.obj") + " --tolerance 0");
-  expectOneErrorLine(usage, 1, "must be a positive number");
+  expectOneErrorLine(usage, 2, "must be a positive number");
 }
 
 TEST(RenderMeshCli, RendersTheSizeAskedAndRefusesBadCameras) {
@@ -161,10 +163,10 @@ TEST(RenderMeshCli, RendersTheSizeAskedAndRefusesBadCameras) {
   const std::uint8_t background[3] = {214, 222, 230};  // docs/RENDERING.md
   EXPECT_NE(std::memcmp(centre, background, 3), 0) << "the default camera looks at the cube";
 
-  expectOneErrorLine(nut("render-mesh " + cube + " -o " + out("x.png") + " --eye 1,2"), 1,
+  expectOneErrorLine(nut("render-mesh " + cube + " -o " + out("x.png") + " --eye 1,2"), 2,
                      "--eye '1,2': expected x,y,z in metres");
-  expectOneErrorLine(nut("render-mesh " + cube + " -o " + out("x.png") + " --size 0x5"), 1, "--size '0x5'");
-  expectOneErrorLine(nut("render-mesh " + cube + " -o " + out("x.png") + " --eye 0,5,0 --target 0,0,0"), 1,
+  expectOneErrorLine(nut("render-mesh " + cube + " -o " + out("x.png") + " --size 0x5"), 2, "--size '0x5'");
+  expectOneErrorLine(nut("render-mesh " + cube + " -o " + out("x.png") + " --eye 0,5,0 --target 0,0,0"), 2,
                      "must not be collinear");
   expectOneErrorLine(nut("render-mesh " + source("README.md") + " -o " + out("x.png")), 1, "README.md");
   expectOneErrorLine(nut("render-mesh " + out("missing.obj") + " -o " + out("x.png")), 2, "missing.obj");
@@ -230,7 +232,7 @@ TEST(InfoCli, TextSummaryAndBlockListMatchTheDecode) {
 }
 
 TEST(MainCli, NoCommandIsAUsageErrorAndEveryHelpHasAnExample) {
-  expectOneErrorLine(nut(""), 1, "see nut --help");
+  expectOneErrorLine(nut(""), 2, "see nut --help");
   const CliRun help = nut("--help");
   EXPECT_EQ(help.exitCode, 0);
   for (const char* command : {"info", "validate", "render", "export-mesh", "render-mesh", "compare", "convert"}) {
@@ -242,6 +244,86 @@ TEST(MainCli, NoCommandIsAUsageErrorAndEveryHelpHasAnExample) {
     ASSERT_NE(example, std::string::npos) << command;
     EXPECT_NE(own.stdoutText.find(std::string("nut ") + command + " ", example), std::string::npos) << command;
   }
+}
+
+
+// A misspelt command is named, with the commands there are, on one line.
+TEST(MainCli, AnUnknownCommandIsNamedWithTheCommandsThereAre) {
+  const CliRun r = nut("rendr samples/hni/building.png -o x.png");
+  expectOneErrorLine(r, 2, "unknown command 'rendr'");
+  EXPECT_NE(r.stderrText.find("info, validate, render, export-mesh, render-mesh, compare, convert"), std::string::npos)
+      << r.stderrText;
+  expectOneErrorLine(nut("--json rendr"), 2, "unknown command 'rendr'");
+}
+
+// The version is the one the project declares in its CMakeLists.txt.
+TEST(MainCli, VersionIsTheProjects) {
+  const std::string cmake = testing::fileText(source("CMakeLists.txt"));
+  std::smatch version;
+  ASSERT_TRUE(std::regex_search(cmake, version, std::regex(R"(project\(nut VERSION ([0-9.]+))"))) << cmake;
+  const CliRun r = nut("--version");
+  EXPECT_EQ(r.exitCode, 0) << r.stderrText;
+  EXPECT_EQ(r.stdoutText, "nut " + version[1].str() + "\n");
+  EXPECT_EQ(r.stderrText, "");
+}
+
+// Usage errors exit 2, whatever the command; input that is read but invalid exits 1.
+TEST(MainCli, UsageErrorsExitTwoAndInvalidInputOne) {
+  const std::string facade = source("samples/hni/facade.png");
+  expectOneErrorLine(nut("info"), 2, "file is required");
+  expectOneErrorLine(nut("info " + facade + " --colour"), 2, "--colour");
+  expectOneErrorLine(nut("render " + facade), 2, "--output is required");
+  expectOneErrorLine(nut("compare " + facade + " " + facade + " --threshold 300"), 2, "--threshold");
+  expectOneErrorLine(nut("render " + facade + " -o " + out("x.png") + " --size 5"), 2, "--size '5'");
+  ASSERT_TRUE(writePng(out("plain.png"), greyImage(16, 4, 128)).ok());
+  expectOneErrorLine(nut("info " + out("plain.png")), 1, "invalid HNI");
+}
+
+// A file is never written under a name that says another format: the command refuses the name
+// before it reads anything, naming the path and the extension it writes, and writes nothing.
+TEST(OutputNamesCli, ANameOfAnotherFormatIsRefusedBeforeAnyWork) {
+  const std::string facade = source("samples/hni/facade.png");
+  const std::string cube = source("tests/data/two_material_cube.obj");
+  for (const char* name : {"refused.png", "refused.jpg", "refused.txt", "refused.stl", "refused.mtl"})
+    fs::remove(out(name));
+  const std::string png = " -o " + out("refused.png") + " --size 8x6";
+  const struct {
+    std::string args, path, expected;
+  } cases[] = {
+      {"render " + facade + " -o " + out("refused.jpg"), out("refused.jpg"), ".png"},
+      {"render " + facade + png + " --depth " + out("refused.txt"), out("refused.txt"), ".pfm"},
+      {"render " + facade + png + " --stats " + out("refused.txt"), out("refused.txt"), ".json"},
+      {"render-mesh " + cube + " -o " + out("refused.jpg"), out("refused.jpg"), ".png"},
+      {"render-mesh " + cube + png + " --depth " + out("refused.txt"), out("refused.txt"), ".pfm"},
+      {"render-mesh " + cube + png + " --stats " + out("refused.txt"), out("refused.txt"), ".json"},
+      {"compare " + facade + " " + facade + " --diff " + out("refused.jpg"), out("refused.jpg"), ".png"},
+      {"export-mesh " + facade + " -o " + out("refused.stl"), out("refused.stl"), ".obj"},
+  };
+  for (const auto& c : cases) {
+    SCOPED_TRACE(c.args);
+    const CliRun r = nut(c.args);
+    expectOneErrorLine(r, 2, c.path + ": ");
+    EXPECT_NE(r.stderrText.find("expected a name ending in " + c.expected), std::string::npos) << r.stderrText;
+    EXPECT_EQ(r.stdoutText, "");
+  }
+  for (const char* name : {"refused.png", "refused.jpg", "refused.txt", "refused.stl", "refused.mtl"})
+    EXPECT_FALSE(fs::exists(out(name))) << name;
+}
+
+// Extensions are compared in any case: upper-case names are written as the lower-case ones are.
+TEST(OutputNamesCli, ExtensionsInUpperCaseAreAccepted) {
+  const std::string facade = source("samples/hni/facade.png");
+  CliRun r = nut("render " + facade + " -o " + out("UPPER.PNG") + " --size 8x6 --depth " + out("UPPER.PFM") +
+                 " --stats " + out("UPPER.JSON"));
+  ASSERT_EQ(r.exitCode, 0) << r.stderrText;
+  auto png = readPng(out("UPPER.PNG"));
+  ASSERT_TRUE(png.ok()) << png.error().message;
+  EXPECT_EQ(png->image.width, 8);
+  EXPECT_EQ(testing::fileText(out("UPPER.PFM")).substr(0, 7), "Pf\n8 6\n");
+  EXPECT_EQ(nlohmann::json::parse(testing::fileText(out("UPPER.JSON"))).at("width").get<int>(), 8);
+  r = nut("export-mesh " + facade + " -o " + out("UPPER.OBJ"));
+  ASSERT_EQ(r.exitCode, 0) << r.stderrText;
+  EXPECT_TRUE(meshref::readObj(out("UPPER.OBJ")).ok());
 }
 
 }  // namespace

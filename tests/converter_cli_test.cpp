@@ -1,10 +1,12 @@
 // `nut convert` as a user runs it: outputs (HNI with the world origin, complementary mesh, report
 // JSON), one HNI per object and city.json with -o FOLDER, the progress bar's absence with --quiet,
-// manual blocks, and the exit codes: 2 for unreadable input, 1 for invalid input or usage; and the
+// manual blocks, output names (a .png in any case is one HNI; another extension is refused), and
+// the exit codes: 1 for invalid input, 2 for usage errors and unreadable input; and the
 // commands users look at the result with: `nut render` (its default lookup, an HNI with its
 // complementary mesh, a city manifest), `nut info --blocks --bytes`.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -139,11 +141,54 @@ TEST(ConvertCli, ExitCodes) {
   EXPECT_NE(r.stderrText.find("no faces"), std::string::npos) << r.stderrText;
 
   r = nut("convert " + sample("house.obj") + " -o " + out("h.png") + " --block 1,2,3");
-  EXPECT_EQ(r.exitCode, 1);
+  EXPECT_EQ(r.exitCode, 2);
   EXPECT_NE(r.stderrText.find("--block '1,2,3'"), std::string::npos) << r.stderrText;
 
   r = nut("convert " + sample("house.obj") + " -o " + out("h.png") + " --tolerance -1");
-  EXPECT_EQ(r.exitCode, 1);
+  EXPECT_EQ(r.exitCode, 2);
+}
+
+// `-o NAME.PNG` is one HNI, as `-o name.png` is, not a folder.
+TEST(ConvertCli, AnUpperCaseDotPngIsOneHni) {
+  fs::remove_all(out("HOUSE.PNG"));
+  const CliRun r = nut("convert " + sample("house.obj") + " -o " + out("HOUSE.PNG") + " --quiet --png-effort small");
+  ASSERT_EQ(r.exitCode, 0) << r.stderrText;
+  ASSERT_TRUE(fs::is_regular_file(out("HOUSE.PNG")));
+  auto png = readPng(out("HOUSE.PNG"));
+  ASSERT_TRUE(png.ok()) << png.error().message;
+  EXPECT_TRUE(validate(png->image).ok());
+}
+
+// An output name of another format is refused before the OBJ is read, naming the path and the
+// extension written there, and nothing is written; a folder whose name has a dot ends in '/'.
+TEST(ConvertCli, AnOutputNameOfAnotherFormatIsRefusedBeforeAnyWork) {
+  const std::string house = sample("house.obj");
+  for (const char* name : {"refused.jpg", "refused.png", "refused.ply", "refused.txt"}) fs::remove_all(out(name));
+  const struct {
+    std::string args, path, expected;
+  } cases[] = {
+      {" -o " + out("refused.jpg"), out("refused.jpg"), "a name ending in .png) or a folder"},
+      {" -o " + out("refused.png") + " --complement " + out("refused.ply"), out("refused.ply"),
+       "expected a name ending in .obj"},
+      {" -o " + out("refused.png") + " --report " + out("refused.txt"), out("refused.txt"),
+       "expected a name ending in .json"},
+  };
+  for (const auto& c : cases) {
+    SCOPED_TRACE(c.args);
+    const CliRun r = nut("convert " + house + c.args);
+    EXPECT_EQ(r.exitCode, 2);
+    EXPECT_EQ(r.stderrText.rfind("error: ", 0), 0u) << r.stderrText;
+    EXPECT_EQ(std::count(r.stderrText.begin(), r.stderrText.end(), '\n'), 1) << r.stderrText;
+    EXPECT_NE(r.stderrText.find(c.path + ": "), std::string::npos) << r.stderrText;
+    EXPECT_NE(r.stderrText.find(c.expected), std::string::npos) << r.stderrText;
+  }
+  for (const char* name : {"refused.jpg", "refused.png", "refused.ply", "refused.txt"})
+    EXPECT_FALSE(fs::exists(out(name))) << name;
+
+  fs::remove_all(out("house.v2"));
+  const CliRun r = nut("convert " + house + " -o " + out("house.v2") + "/ --quiet --png-effort small");
+  ASSERT_EQ(r.exitCode, 0) << r.stderrText;
+  EXPECT_TRUE(fs::is_regular_file(out("house.v2/city.json")));
 }
 
 // `nut render`, with which users look at what `nut convert` wrote: both back-ends read the exact
