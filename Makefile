@@ -4,14 +4,16 @@
 #   make test   install deps, build, run the whole test suite (ctest) and a short fuzz run
 #   make bench  run the benchmarks (Release build)
 #   make fuzz   run the libFuzzer target longer: make fuzz FUZZ_SECONDS=600
+#   make core-check   build the core alone (optional modules off) and check what it links
 BUILD ?= build
+CORE_BUILD ?= build-core
 FUZZ_BUILD ?= build-fuzz
 JOBS ?= $(shell nproc)
 FUZZ_SECONDS ?= 600
 FUZZ_SMOKE_SECONDS ?= 30
 OUT ?= out
 
-.PHONY: deps build test demo bench fuzz fuzz-build fuzz-smoke clean
+.PHONY: deps build test demo bench fuzz fuzz-build fuzz-smoke core-check clean
 
 deps:
 	@./scripts/install-deps.sh
@@ -22,7 +24,11 @@ build: deps
 
 test: build
 	@ctest --test-dir $(BUILD) --output-on-failure -j $(JOBS)
+	@$(MAKE) --no-print-directory core-check
 	@$(MAKE) --no-print-directory fuzz-smoke
+
+core-check: deps
+	@./scripts/check-core-build.sh $(CORE_BUILD)
 
 demo: build
 	@./scripts/demo.sh $(BUILD) $(OUT)
@@ -49,4 +55,4 @@ fuzz: fuzz-build
 	  -artifact_prefix=$(FUZZ_BUILD)/ $(FUZZ_BUILD)/corpus
 
 clean:
-	rm -rf $(BUILD) $(FUZZ_BUILD) $(OUT)
+	rm -rf $(BUILD) $(CORE_BUILD) $(FUZZ_BUILD) $(OUT)

@@ -14,9 +14,9 @@
 #include <string>
 
 #include <converter/convert.hpp>
-#include <converter/mesh.hpp>
 #include <converter/mesh_size.hpp>
 #include <nut/png_encode.hpp>
+#include <scene/obj.hpp>
 
 #include "converter_fidelity.hpp"
 
@@ -24,21 +24,21 @@ namespace {
 
 std::string samplePath(const std::string& name) { return std::string(NUT_SOURCE_DIR) + "/samples/obj/" + name + ".obj"; }
 
-const nut::converter::Mesh& sample(const std::string& name) {
-  static std::map<std::string, nut::converter::Mesh> meshes;
+const nut::TriangleMesh& sample(const std::string& name) {
+  static std::map<std::string, nut::TriangleMesh> meshes;
   auto it = meshes.find(name);
   if (it != meshes.end()) return it->second;
-  auto obj = nut::converter::readObj(samplePath(name));
+  auto obj = nut::scene::readObj(samplePath(name));
   if (!obj) {
     std::fprintf(stderr, "convert_bench: %s\n", obj.error().message.c_str());
     std::exit(1);
   }
-  return meshes[name] = nut::converter::mergeObjects(obj->objects, name);
+  return meshes[name] = mergeMeshes(obj->objects, name).value();
 }
 
 // state.range(0): worker threads (0: all cores).
 void convert(benchmark::State& state, const std::string& name) {
-  const nut::converter::Mesh& mesh = sample(name);
+  const nut::TriangleMesh& mesh = sample(name);
   nut::converter::ConvertOptions options;
   options.solid.threads = static_cast<int>(state.range(0));
   for (auto _ : state) {
@@ -53,7 +53,7 @@ void convert(benchmark::State& state, const std::string& name) {
 // Writing the HNI: the converted image encoded as `nut convert` writes it (PngEffort::Smallest:
 // every filter strategy, Zopfli on all cores), per triangle of the source so the two add up.
 void encodeHni(benchmark::State& state, const std::string& name) {
-  const nut::converter::Mesh& mesh = sample(name);
+  const nut::TriangleMesh& mesh = sample(name);
   auto result = nut::converter::convertMesh(mesh);
   if (!result) {
     state.SkipWithError(result.error().message.c_str());
@@ -65,7 +65,7 @@ void encodeHni(benchmark::State& state, const std::string& name) {
 
 // state.range(0): --tolerance in millimetres; all cores.
 void convertAtTolerance(benchmark::State& state, const std::string& name) {
-  const nut::converter::Mesh& mesh = sample(name);
+  const nut::TriangleMesh& mesh = sample(name);
   nut::converter::ConvertOptions options;
   options.solid.toleranceM = static_cast<double>(state.range(0)) / 1000.0;
   std::optional<nut::converter::Conversion> kept;
@@ -87,7 +87,7 @@ void convertAtTolerance(benchmark::State& state, const std::string& name) {
 
 void readObj(benchmark::State& state, const std::string& name) {
   for (auto _ : state) {
-    auto obj = nut::converter::readObj(samplePath(name));
+    auto obj = nut::scene::readObj(samplePath(name));
     benchmark::DoNotOptimize(obj);
   }
   state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(sample(name).triangles.size()));

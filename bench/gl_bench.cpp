@@ -30,7 +30,7 @@ constexpr const char* kSample = "building";
 struct Scene {
   nut::PngFile png;
   nut::Hierarchy model;
-  nut::ExportedMesh mesh;
+  nut::TriangleMesh mesh;
   nut::Camera camera;
 };
 
@@ -69,7 +69,7 @@ void glFrame(benchmark::State& state, nut::viewer::Backend backend, bool rayCast
     return;
   }
   const nut::Status added = rayCast ? (*renderer)->addHni(s.png.image, s.png.text.originM)
-                                    : (*renderer)->addMesh(nut::viewer::meshData(s.mesh, s.model.materials));
+                                    : (*renderer)->addMesh(s.mesh);
   if (!added) fail(added.error().message);
   nut::RayCastOptions cast;
   cast.lookup = lookup;
@@ -94,14 +94,7 @@ void cpuCaster(benchmark::State& state) {
 
 void embree(benchmark::State& state) {
   const Scene& s = scene();
-  nut::meshref::TriangleMesh mesh;
-  for (const nut::Material& m : s.model.materials) mesh.materials.push_back({"", m});
-  mesh.positions = s.mesh.positions;
-  mesh.triangles = s.mesh.triangles;
-  mesh.triangleMaterial.assign(s.mesh.triangleMaterial.begin(), s.mesh.triangleMaterial.end());
-  auto bounds = nut::contentBounds(s.model, s.png.text.originM);
-  mesh.bounds = *bounds;
-  auto renderer = nut::meshref::EmbreeRenderer::create(mesh);
+  auto renderer = nut::meshref::EmbreeRenderer::create(s.mesh);
   if (!renderer) fail(renderer.error().message);
   nut::meshref::MeshRenderStats stats;
   for (auto _ : state) {

@@ -34,7 +34,9 @@
 #include <viewer/gl_object.hpp>
 #include <viewer/shader_library.hpp>
 
+#if NUT_HAVE_OSMESA
 #include <GL/osmesa.h>  // after <viewer/gl.hpp>, which includes GL/glcorearb.h
+#endif
 #include <EGL/egl.h>
 
 #include <algorithm>
@@ -167,7 +169,9 @@ struct TimerQueries {
 
 TimerQueries loadTimerQueries(const viewer::Context& context) {
   const auto load = [&context](const char* name) -> void (*)() {
+#if NUT_HAVE_OSMESA
     if (context.backend() == viewer::Backend::OSMesa) return reinterpret_cast<void (*)()>(OSMesaGetProcAddress(name));
+#endif
     return reinterpret_cast<void (*)()>(eglGetProcAddress(name));
   };
   TimerQueries q;

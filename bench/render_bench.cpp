@@ -10,8 +10,8 @@
 #include <string>
 
 #include <meshref/embree_renderer.hpp>
-#include <meshref/image_compare.hpp>
 #include <nut/hni.hpp>
+#include <nut/image_compare.hpp>
 #include <nut/mesh_export.hpp>
 #include <nut/png_io.hpp>
 #include <nut/raycast.hpp>
@@ -24,7 +24,7 @@ constexpr int kThreads = 1;  // one thread for both renderers: the ratio, not th
 struct Scene {
   nut::PngFile png;
   std::unique_ptr<nut::HniRayCaster> caster;
-  nut::meshref::TriangleMesh mesh;
+  nut::TriangleMesh mesh;
   std::unique_ptr<nut::meshref::EmbreeRenderer> embree;
   nut::Camera camera;
   nut::Camera farCamera;  // six times further away: the building spans about 150 pixels
@@ -50,13 +50,9 @@ const Scene& scene(const std::string& name) {
   s.caster = std::make_unique<nut::HniRayCaster>(s.png.image, s.png.text.originM);
   auto exported = nut::exportMesh(*h, s.png.text.originM);
   if (!exported) fail(exported.error().message);
-  for (const auto& m : h->materials) s.mesh.materials.push_back({"", m});
-  s.mesh.positions = exported->positions;
-  s.mesh.triangles = exported->triangles;
-  s.mesh.triangleMaterial.assign(exported->triangleMaterial.begin(), exported->triangleMaterial.end());
+  s.mesh = std::move(*exported);
   auto bounds = nut::contentBounds(*h, s.png.text.originM);
   if (!bounds) fail(bounds.error().message);
-  s.mesh.bounds = *bounds;
   auto embree = nut::meshref::EmbreeRenderer::create(s.mesh);
   if (!embree) fail(embree.error().message);
   s.embree = std::make_unique<nut::meshref::EmbreeRenderer>(std::move(*embree));
@@ -87,7 +83,7 @@ void nutCaster(benchmark::State& state, const std::string& name, nut::Lookup loo
   setRate(state);
   state.counters["iterations_mean"] = stats.iterationsMean;
   if (far) {
-    auto diff = nut::meshref::compareImages(out.colour, s.farFullDetail, 8);
+    auto diff = nut::compareImages(out.colour, s.farFullDetail, 8);
     state.counters["differing_pct"] = diff ? diff->differingPct : -1;
   }
 }

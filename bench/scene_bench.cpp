@@ -1,4 +1,4 @@
-// Rendering a city on the CPU (meshref::SceneRenderer, what `nut render city.json` draws): a
+// Rendering a city on the CPU (scene::SceneRenderer, what `nut render city.json` draws): a
 // 40 x 40 grid of the sample building, 1,600 HNIs sharing one image, from above the whole city and
 // from a street inside it, at 640 x 360 on one thread. The scene walks a grid over the ground and
 // casts each ray only into the HNIs it meets before its nearest hit; the baseline casts every ray
@@ -12,10 +12,10 @@
 #include <string>
 #include <vector>
 
-#include <meshref/image_compare.hpp>
-#include <meshref/scene_render.hpp>
+#include <nut/image_compare.hpp>
 #include <nut/png_io.hpp>
 #include <nut/raycast.hpp>
+#include <scene/scene_render.hpp>
 
 namespace {
 
@@ -31,8 +31,8 @@ constexpr double kSpacingM = 30;   // between building origins (the building is 
 
 struct City {
   nut::PngFile png;
-  std::vector<nut::meshref::PlacedHni> placed;
-  std::unique_ptr<nut::meshref::SceneRenderer> scene;
+  std::vector<nut::scene::PlacedHni> placed;
+  std::unique_ptr<nut::scene::SceneRenderer> scene;
   std::vector<std::unique_ptr<nut::HniRayCaster>> casters;  // the baseline: one per HNI
   std::vector<nut::WorldBox> boxes;                         // and its world box
   nut::Camera above, street;
@@ -51,9 +51,7 @@ const City& city() {
         city->casters.push_back(std::make_unique<nut::HniRayCaster>(city->png.image, origin));
         city->boxes.push_back(city->casters.back()->bounds());
       }
-    auto scene = nut::meshref::SceneRenderer::create(city->placed, {});
-    if (!scene) fail(scene.error().message);
-    city->scene = std::make_unique<nut::meshref::SceneRenderer>(std::move(*scene));
+    city->scene = std::make_unique<nut::scene::SceneRenderer>(city->placed, nullptr);
     const double size = kSide * kSpacingM;
     city->above = nut::fitCamera({{0, 0, 0}, {size, 30, size}}, kWidth, kHeight);
     city->street = city->above;
@@ -110,7 +108,7 @@ void baseline(benchmark::State& state, const std::string& viewName) {
   state.SetItemsProcessed(state.iterations() * kWidth * kHeight);
   // The two must draw the same picture.
   const nut::RenderOutput grid = c.scene->render(view(c, viewName), {}, kThreads);
-  auto diff = nut::meshref::compareImages(out.colour, grid.colour, 0);
+  auto diff = nut::compareImages(out.colour, grid.colour, 0);
   state.counters["pixels_differing_from_grid"] = diff ? static_cast<double>(diff->differing) : -1;
 }
 

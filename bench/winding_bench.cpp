@@ -19,9 +19,9 @@
 #include <string>
 #include <vector>
 
-#include <converter/mesh.hpp>
 #include <converter/mesh_check.hpp>
 #include <converter/winding.hpp>
+#include <scene/obj.hpp>
 
 namespace {
 
@@ -31,7 +31,7 @@ constexpr int kQueries = 1000;
 constexpr int kErrorPoints = 500;
 
 struct Scene {
-  nut::converter::Mesh mesh;
+  nut::TriangleMesh mesh;
   std::vector<glm::dvec3> points;
 };
 
@@ -44,10 +44,10 @@ std::string meshPath(const std::string& name) {
 const Scene* scene(const std::string& name) {
   static std::map<std::string, Scene> scenes;
   if (auto it = scenes.find(name); it != scenes.end()) return &it->second;
-  auto obj = nut::converter::readObj(meshPath(name));
+  auto obj = nut::scene::readObj(meshPath(name));
   if (!obj) return nullptr;
   Scene& s = scenes[name];
-  s.mesh = nut::converter::mergeObjects(obj->objects, name);
+  s.mesh = mergeMeshes(obj->objects, name).value();
   nut::converter::checkAndRepair(s.mesh);
   std::mt19937 rng(2018);
   std::uniform_int_distribution<std::size_t> pick(0, s.mesh.triangles.size() - 1);

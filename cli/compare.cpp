@@ -1,5 +1,5 @@
 // `nut compare A.png B.png`: how far two renders of the same view are apart (RMS, PSNR, share of
-// differing pixels), with an optional diff picture. Thin over meshref::compareImages.
+// differing pixels), with an optional diff picture. Thin over nut::compareImages.
 #include <cmath>
 #include <cstdio>
 #include <memory>
@@ -7,7 +7,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include <meshref/image_compare.hpp>
+#include <nut/image_compare.hpp>
 #include <nut/png_io.hpp>
 
 #include "commands.hpp"
@@ -27,7 +27,7 @@ int run(const CompareOptions& o) {
   if (!a) return fail(a.error().message, kUnreadable);
   auto b = readPng(o.b);
   if (!b) return fail(b.error().message, kUnreadable);
-  auto d = meshref::compareImages(a->image, b->image, o.threshold);
+  auto d = nut::compareImages(a->image, b->image, o.threshold);
   if (!d) return fail(d.error().message, kInvalid);
   if (!o.diff.empty())
     if (Status s = writePng(o.diff, d->diff); !s) return fail(s.error().message, kUnreadable);

@@ -10,15 +10,15 @@
 #include <set>
 #include <string>
 #include <thread>
-#include <vector>
 #include <unistd.h>
+#include <vector>
 
 #include <glm/vec3.hpp>
 #include <nlohmann/json.hpp>
 
-#include <converter/city.hpp>
 #include <converter/convert.hpp>
 #include <nut/png_io.hpp>
+#include <scene/city.hpp>
 
 #include "commands.hpp"
 
@@ -139,10 +139,11 @@ Result<converter::ConvertOptions> convertOptionsOf(const ConvertCliOptions& o) {
 }
 
 // The whole file as one building: one HNI, its complementary mesh and report where asked.
-int convertOneBuilding(const ConvertCliOptions& o, converter::ObjContents& obj, converter::ConvertOptions options) {
+int convertOneBuilding(const ConvertCliOptions& o, scene::ObjContents& obj, converter::ConvertOptions options) {
   const std::string name = fs::path(o.input).stem().string();
-  converter::Mesh mesh =
-      obj.objects.size() == 1 ? std::move(obj.objects[0]) : converter::mergeObjects(obj.objects, name);
+  auto merged = obj.objects.size() == 1 ? Result<TriangleMesh>(std::move(obj.objects[0])) : mergeMeshes(obj.objects, name);
+  if (!merged) return fail(o.input + ": " + merged.error().message, kInvalid);
+  TriangleMesh mesh = std::move(*merged);
   mesh.name = name;
   ProgressBar bar(!o.quiet, name);
   options.progress = [&](std::string_view phase, double f) { bar.update(phase, f); };
@@ -165,12 +166,12 @@ int convertOneBuilding(const ConvertCliOptions& o, converter::ObjContents& obj, 
 }
 
 // File names for the objects, in their order: a name used twice gets _2, _3, ...
-std::vector<std::string> fileStems(const std::vector<converter::Mesh>& objects) {
+std::vector<std::string> fileStems(const std::vector<TriangleMesh>& objects) {
   std::vector<std::string> stems;
   std::set<std::string> used;
-  for (const converter::Mesh& object : objects) {
-    std::string stem = converter::safeFileStem(object.name);
-    for (int k = 2; used.count(stem); ++k) stem = converter::safeFileStem(object.name) + "_" + std::to_string(k);
+  for (const TriangleMesh& object : objects) {
+    std::string stem = scene::safeFileStem(object.name);
+    for (int k = 2; used.count(stem); ++k) stem = scene::safeFileStem(object.name) + "_" + std::to_string(k);
     used.insert(stem);
     stems.push_back(stem);
   }
@@ -188,7 +189,7 @@ struct ConvertedBuilding {
 // Converts and writes each object into the folder, side by side, one per worker, each on one
 // thread (most of a small building's conversion keeps one core busy); the results come in the
 // objects' order whatever the timing.
-std::vector<ConvertedBuilding> convertSideBySide(const ConvertCliOptions& o, std::vector<converter::Mesh>& objects,
+std::vector<ConvertedBuilding> convertSideBySide(const ConvertCliOptions& o, std::vector<TriangleMesh>& objects,
                                                  converter::ConvertOptions perBuilding, ProgressBar& bar) {
   const std::size_t count = objects.size();
   const std::vector<std::string> stems = fileStems(objects);
@@ -232,7 +233,7 @@ std::vector<ConvertedBuilding> convertSideBySide(const ConvertCliOptions& o, std
 }
 
 // One HNI per object, a complementary mesh beside each that has one, and city.json.
-int convertCity(const ConvertCliOptions& o, converter::ObjContents& obj, const converter::ConvertOptions& options) {
+int convertCity(const ConvertCliOptions& o, scene::ObjContents& obj, const converter::ConvertOptions& options) {
   if (!o.complement.empty())
     return fail(
         "--complement names one file; with -o FOLDER each building's complementary mesh is written into the folder",
@@ -240,7 +241,7 @@ int convertCity(const ConvertCliOptions& o, converter::ObjContents& obj, const c
   std::error_code ec;
   fs::create_directories(o.output, ec);
   if (ec) return fail(o.output + ": cannot create folder (" + ec.message() + ")", kUnreadable);
-  converter::CityManifest city;
+  scene::CityManifest city;
   city.name = fs::path(o.input).stem().string();
   ProgressBar bar(!o.quiet, city.name);
   const std::vector<ConvertedBuilding> buildings = convertSideBySide(o, obj.objects, options, bar);
@@ -254,7 +255,7 @@ int convertCity(const ConvertCliOptions& o, converter::ObjContents& obj, const c
     if (!o.quiet) printSummary(b.report, (fs::path(o.output) / b.hni).string());
   }
   const std::string manifest = (fs::path(o.output) / "city.json").string();
-  if (Status s = writeTextFile(manifest, converter::cityJson(city)); !s) return fail(s.error().message, kUnreadable);
+  if (Status s = scene::writeCityJson(manifest, city); !s) return fail(s.error().message, kUnreadable);
   if (!o.report.empty())
     if (Status s = writeTextFile(o.report, nlohmann::json{{"objects", reports}}.dump(2) + "\n"); !s)
       return fail(s.error().message, kUnreadable);
@@ -270,7 +271,7 @@ int run(const ConvertCliOptions& o) {
   }
   auto options = convertOptionsOf(o);
   if (!options) return fail(options.error().message, kUsage);
-  auto obj = converter::readObj(o.input, {o.zUp});
+  auto obj = scene::readObj(o.input, {o.zUp});
   if (!obj) return fail(obj.error().message, kInvalid);
   if (!o.quiet)
     for (const std::string& w : obj->warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());

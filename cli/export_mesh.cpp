@@ -30,7 +30,7 @@ int run(const ExportMeshOptions& o) {
   if (!hierarchy) return fail(o.input + ": invalid HNI: " + hierarchy.error().message, kInvalid);
   auto mesh = exportMesh(*hierarchy, png->text.originM, o.mesh);
   if (!mesh) return fail(o.input + ": " + mesh.error().message, kInvalid);
-  if (Status s = writeObj(o.output, *mesh, hierarchy->materials); !s) return fail(s.error().message, kUnreadable);
+  if (Status s = writeObj(o.output, *mesh); !s) return fail(s.error().message, kUnreadable);
   std::vector<bool> used(hierarchy->materials.size(), false);
   for (std::uint16_t m : mesh->triangleMaterial) used[m] = true;
   std::fprintf(stderr, "export-mesh: wrote %s (%zu triangles, %zu vertices, %zu materials used, tolerance %g m)\n",

@@ -25,13 +25,4 @@ Result<std::unique_ptr<viewer::OffscreenRenderer>> GlOptions::open() const {
   return renderer;
 }
 
-viewer::MeshData toMeshData(const meshref::TriangleMesh& mesh) {
-  viewer::MeshData data;
-  data.positions = mesh.positions;
-  data.triangles = mesh.triangles;
-  data.triangleMaterial.reserve(mesh.triangles.size());
-  for (std::uint32_t m : mesh.triangleMaterial) data.triangleMaterial.push_back(mesh.materials[m].material);
-  return data;
-}
-
 }  // namespace nut::cli

@@ -1,6 +1,5 @@
 // cli/gl_backend.hpp — the GL side of `nut render` and `nut render-mesh` (`--backend gl`): the flags
-// that pick the context and the shader sources, opening the offscreen renderer, and OBJ meshes in
-// the form the GL layer draws.
+// that pick the context and the shader sources, and opening the offscreen renderer.
 #pragma once
 
 #include <memory>
@@ -8,7 +7,6 @@
 
 #include <CLI/CLI.hpp>
 
-#include <meshref/obj.hpp>
 #include <nut/error.hpp>
 #include <viewer/offscreen.hpp>
 
@@ -23,8 +21,5 @@ struct GlOptions {
   // The renderer on the chosen back-end; the error names the back-end and why it is unavailable.
   Result<std::unique_ptr<viewer::OffscreenRenderer>> open() const;
 };
-
-// The mesh as the GL layer takes it: one material per triangle.
-viewer::MeshData toMeshData(const meshref::TriangleMesh& mesh);
 
 }  // namespace nut::cli

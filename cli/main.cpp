@@ -65,9 +65,13 @@ int main(int argc, char** argv) {
   nut::cli::addValidateCommand(app, exitCode);
   nut::cli::addRenderCommand(app, exitCode);
   nut::cli::addExportMeshCommand(app, exitCode);
+#if NUT_HAVE_EMBREE
   nut::cli::addRenderMeshCommand(app, exitCode);
+#endif
   nut::cli::addCompareCommand(app, exitCode);
+#if NUT_HAVE_CONVERTER
   nut::cli::addConvertCommand(app, exitCode);
+#endif
   if (std::string message; nut::cli::isUnknownCommand(app, argc, argv, message))
     return nut::cli::fail(message, nut::cli::kUsage);
   try {

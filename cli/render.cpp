@@ -3,6 +3,7 @@
 // and any --mesh in the same image.
 #include <chrono>
 #include <cstdio>
+#include <map>
 #include <memory>
 #include <string>
 #include <vector>
@@ -12,10 +13,17 @@
 #include <nut/png_io.hpp>
 #include <nut/raycast.hpp>
 
+#include <scene/scene.hpp>
+#include <scene/scene_render.hpp>
+#if NUT_HAVE_EMBREE
+#include <meshref/embree_renderer.hpp>
+#endif
+
 #include "camera_options.hpp"
 #include "commands.hpp"
+#if NUT_HAVE_GL
 #include "gl_backend.hpp"
-#include "render_scene.hpp"
+#endif
 
 namespace nut::cli {
 
@@ -25,26 +33,29 @@ struct RenderOptions {
   std::string input, output, depth, stats, backend = "cpu", lookup = "exact";
   std::vector<std::string> meshes;
   CameraOptions camera;
+#if NUT_HAVE_GL
   GlOptions gl;
+#endif
   double lodPx = 0;
   int maxIterations = 512;
   int threads = 0;
 };
 
+#if NUT_HAVE_GL
 // The scene through the GLSL ray caster; `frame` and `stats` are filled. Returns an exit code.
-int renderWithGl(const RenderOptions& o, const RenderScene& scene, const Camera& camera, const RayCastOptions& options,
+int renderWithGl(const RenderOptions& o, const scene::Scene& scene, const Camera& camera, const RayCastOptions& options,
                  RenderOutput& frame, RenderStats& stats) {
   auto gl = o.gl.open();
   if (!gl) return fail("GL: " + gl.error().message, kUnreadable);
   std::fprintf(stderr, "render: GL %s: %s\n", o.gl.context.c_str(), (*gl)->context().description().c_str());
   // One shared image per file: the buildings that name it are instances of one atlas entry.
-  std::vector<std::shared_ptr<const Image>> images;
-  for (const PngFile& file : scene.files) images.push_back(std::make_shared<const Image>(file.image));
+  std::map<const Image*, std::shared_ptr<const Image>> images;
+  for (const PngFile& file : scene.files) images[&file.image] = std::make_shared<const Image>(file.image);
   Status added = Ok{};
-  for (std::size_t i = 0; i < scene.hnis.size(); ++i)
-    if (added) added = (*gl)->addHni(images[scene.hniFiles[i]], scene.hnis[i].originM, scene.hnis[i].worldFromRoot);
-  for (const meshref::TriangleMesh& mesh : scene.meshes)
-    if (added) added = (*gl)->addMesh(toMeshData(mesh));
+  for (const scene::PlacedHni& hni : scene.hnis)
+    if (added) added = (*gl)->addHni(images.at(hni.image), hni.originM, hni.worldFromRoot);
+  for (const TriangleMesh& mesh : scene.meshes)
+    if (added) added = (*gl)->addMesh(mesh);
   if (!added) return fail(added.error().message, kInvalid);
   const auto start = std::chrono::steady_clock::now();
   if (Status drawn = (*gl)->draw(camera, options); !drawn) return fail("GL: " + drawn.error().message, kUnreadable);
@@ -55,20 +66,30 @@ int renderWithGl(const RenderOptions& o, const RenderScene& scene, const Camera&
   frame.distanceM = std::move(gpu.distanceM);
   return kOk;
 }
+#endif
 
 // The scene through the CPU ray caster (and Embree for its meshes). Returns an exit code.
-int renderOnCpu(const RenderOptions& o, const RenderScene& scene, const Camera& camera, const RayCastOptions& options,
+int renderOnCpu(const RenderOptions& o, const scene::Scene& scene, const Camera& camera, const RayCastOptions& options,
                 RenderOutput& frame, RenderStats& stats) {
   if (scene.hnis.size() == 1 && scene.meshes.empty()) {
     // One HNI alone keeps its translucent cells' tint over the background, which a scene of
-    // several objects does not (meshref/scene_render.hpp).
-    const meshref::PlacedHni& hni = scene.hnis.front();
+    // several objects does not (scene/scene_render.hpp).
+    const scene::PlacedHni& hni = scene.hnis.front();
     frame = renderHni(HniRayCaster(*hni.image, hni.originM, hni.worldFromRoot), camera, options, o.threads, &stats);
     return kOk;
   }
-  auto renderer = meshref::SceneRenderer::create(scene.hnis, scene.meshPointers());
-  if (!renderer) return fail(renderer.error().message, kUnreadable);
-  frame = renderer->render(camera, options, o.threads, &stats);
+#if NUT_HAVE_EMBREE
+  auto traced = meshref::traceMeshes(scene.meshPointers());
+  if (!traced) return fail(traced.error().message, kUnreadable);
+  std::unique_ptr<const scene::MeshTracer> meshes = std::move(*traced);
+#else
+  if (!scene.meshes.empty())
+    return fail(o.input + ": this nut was built without the Embree mesh reference (NUT_BUILD_EMBREE=OFF), so the cpu "
+                "back-end cannot draw meshes", kUsage);
+  std::unique_ptr<const scene::MeshTracer> meshes;
+#endif
+  const scene::SceneRenderer renderer(scene.hnis, std::move(meshes));
+  frame = renderer.render(camera, options, o.threads, &stats);
   return kOk;
 }
 
@@ -91,8 +112,11 @@ Status writeStats(const RenderOptions& o, const Camera& camera, const RenderStat
 }
 
 int run(const RenderOptions& o) {
-  RenderScene scene;
-  if (int code = loadRenderScene(o.input, o.meshes, scene); code != kOk) return code;
+  scene::LoadFailure failure = scene::LoadFailure::invalid;
+  auto loaded = scene::loadScene(o.input, o.meshes, &failure);
+  if (!loaded) return fail(loaded.error().message, failure == scene::LoadFailure::unreadable ? kUnreadable : kInvalid);
+  for (const std::string& warning : loaded->warnings) std::fprintf(stderr, "warning: %s\n", warning.c_str());
+  const scene::Scene& scene = *loaded;
   // The default camera fits the solid content and the meshes, as `nut render-mesh` fits a mesh.
   auto camera = o.camera.resolve(scene.bounds);
   if (!camera) return fail(camera.error().message, kUsage);
@@ -106,8 +130,12 @@ int run(const RenderOptions& o) {
   RenderOutput frame;
   RenderStats stats;
   const bool gl = o.backend == "gl";
+#if NUT_HAVE_GL
   const int code = gl ? renderWithGl(o, scene, *camera, options, frame, stats)
                       : renderOnCpu(o, scene, *camera, options, frame, stats);
+#else
+  const int code = renderOnCpu(o, scene, *camera, options, frame, stats);
+#endif
   if (code != kOk) return code;
   if (Status s = writePng(o.output, frame.colour); !s) return fail(s.error().message, kUnreadable);
   if (!o.depth.empty())
@@ -134,10 +162,16 @@ void addRenderCommand(CLI::App& app, int& exitCode) {
       ->required();
   cmd->add_option("-o,--output", o->output, "Output image (PNG)")->required()->check(outputExtension(".png", "PNG"));
   o->camera.addTo(*cmd);
+#if NUT_HAVE_GL
   cmd->add_option("--backend", o->backend, "Renderer: cpu (the reference ray caster) or gl (the GLSL ray caster)")
       ->check(CLI::IsMember({"cpu", "gl"}))
       ->default_val("cpu");
   o->gl.addTo(*cmd);
+#else
+  cmd->add_option("--backend", o->backend, "Renderer: cpu (the reference ray caster; built without GL)")
+      ->check(CLI::IsMember({"cpu"}))
+      ->default_val("cpu");
+#endif
   cmd->add_option(
       "--mesh", o->meshes,
       "A mesh (OBJ; a complementary mesh) drawn with the HNI in one image, nearest surface in front (repeatable)");

@@ -11,12 +11,14 @@
 #include <nlohmann/json.hpp>
 
 #include <meshref/embree_renderer.hpp>
-#include <meshref/obj.hpp>
 #include <nut/png_io.hpp>
+#include <scene/obj.hpp>
 
 #include "camera_options.hpp"
 #include "commands.hpp"
+#if NUT_HAVE_GL
 #include "gl_backend.hpp"
+#endif
 
 namespace nut::cli {
 
@@ -25,7 +27,9 @@ namespace {
 struct RenderMeshOptions {
   std::string input, output, depth, stats, backend = "cpu";
   CameraOptions camera;
+#if NUT_HAVE_GL
   GlOptions gl;
+#endif
   int threads = 0;
 };
 
@@ -40,13 +44,14 @@ int writeOutputs(const RenderMeshOptions& o, const Camera& camera, const Image& 
   return kOk;
 }
 
+#if NUT_HAVE_GL
 // Rasterises the mesh with OpenGL: the camera is fitted to the same bounds as Embree's.
-int runGl(const RenderMeshOptions& o, const meshref::TriangleMesh& mesh) {
-  auto camera = o.camera.resolve(mesh.bounds);
+int runGl(const RenderMeshOptions& o, const TriangleMesh& mesh) {
+  auto camera = o.camera.resolve(mesh.bounds());
   if (!camera) return fail(camera.error().message, kUsage);
   auto gl = o.gl.open();
   if (!gl) return fail("GL: " + gl.error().message, kUnreadable);
-  if (Status s = (*gl)->addMesh(toMeshData(mesh)); !s) return fail(o.input + ": " + s.error().message, kInvalid);
+  if (Status s = (*gl)->addMesh(mesh); !s) return fail(o.input + ": " + s.error().message, kInvalid);
   std::fprintf(stderr, "render-mesh: %s, %zu triangle%s, %dx%d, GL %s: %s\n", o.input.c_str(), mesh.triangles.size(),
                mesh.triangles.size() == 1 ? "" : "s", camera->width, camera->height, o.gl.context.c_str(),
                (*gl)->context().description().c_str());
@@ -63,17 +68,21 @@ int runGl(const RenderMeshOptions& o, const meshref::TriangleMesh& mesh) {
   std::fprintf(stderr, "render-mesh: wrote %s (%.3f s)\n", o.output.c_str(), seconds);
   return kOk;
 }
+#endif
 
 int run(const RenderMeshOptions& o) {
-  auto mesh = meshref::readObj(o.input);
+  std::vector<std::string> warnings;
+  auto mesh = scene::readObjMesh(o.input, warnings);
   if (!mesh) {
     // A file that opens but does not hold a usable mesh is invalid input, not unreadable.
     std::error_code ec;
     const bool readable = std::filesystem::is_regular_file(o.input, ec) && std::ifstream(o.input).good();
     return fail(mesh.error().message, readable ? kInvalid : kUnreadable);
   }
-  for (const std::string& warning : mesh->warnings) std::fprintf(stderr, "warning: %s\n", warning.c_str());
+  for (const std::string& warning : warnings) std::fprintf(stderr, "warning: %s\n", warning.c_str());
+#if NUT_HAVE_GL
   if (o.backend == "gl") return runGl(o, *mesh);
+#endif
   auto renderer = meshref::EmbreeRenderer::create(*mesh);
   if (!renderer) return fail(o.input + ": " + renderer.error().message, kInvalid);
   auto camera = o.camera.resolve(renderer->bounds());
@@ -107,10 +116,16 @@ void addRenderMeshCommand(CLI::App& app, int& exitCode) {
       ->required();
   cmd->add_option("-o,--output", o->output, "Output image (PNG)")->required()->check(outputExtension(".png", "PNG"));
   o->camera.addTo(*cmd);
+#if NUT_HAVE_GL
   cmd->add_option("--backend", o->backend, "Renderer: cpu (Embree ray tracing) or gl (OpenGL rasterisation)")
       ->check(CLI::IsMember({"cpu", "gl"}))
       ->default_val("cpu");
   o->gl.addTo(*cmd);
+#else
+  cmd->add_option("--backend", o->backend, "Renderer: cpu (Embree ray tracing; built without GL)")
+      ->check(CLI::IsMember({"cpu"}))
+      ->default_val("cpu");
+#endif
   cmd->add_option("--depth", o->depth, "Also write the distance along each ray (metres, +inf for misses) as PFM")
       ->check(outputExtension(".pfm", "PFM"));
   cmd->add_option("--stats", o->stats, "Write timing statistics as JSON")->check(outputExtension(".json", "JSON"));

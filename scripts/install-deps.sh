@@ -8,8 +8,8 @@ packages=(
   # core: PNG I/O, maths, CLI, JSON
   libpng-dev zlib1g-dev libzopfli-dev libglm-dev
   libcli11-dev nlohmann-json3-dev
-  # the mesh reference renderer: OBJ/MTL reading and Embree ray tracing
-  libtinyobjloader-dev libembree-dev libtbb-dev
+  # the mesh reference renderer: Embree ray tracing
+  libembree-dev libtbb-dev
   # GL back-ends: OSMesa (headless, CPU), EGL (headless GPU), GLFW windows under Xvfb
   libosmesa6-dev libegl-dev libepoxy-dev libglfw3-dev xvfb xauth
   # the mesh converter: mesh input and checks, glTF size comparison

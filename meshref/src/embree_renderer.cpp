@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <memory>
 #include <string>
 
 #include <embree3/rtcore.h>
@@ -13,6 +14,8 @@
 #include <nut/render_loop.hpp>
 
 namespace nut::meshref {
+
+using scene::MeshHit;
 
 namespace {
 
@@ -54,8 +57,8 @@ Result<EmbreeRenderer> EmbreeRenderer::create(const TriangleMesh& mesh) {
       },
       s.get());
 
-  s->bounds = mesh.bounds;
-  s->centre = mesh.bounds.centre();
+  s->bounds = mesh.bounds();
+  s->centre = s->bounds.centre();
   const std::size_t triangleCount = mesh.triangles.size();
   s->normals.resize(triangleCount);
   s->planeOffsets.resize(triangleCount);
@@ -68,7 +71,7 @@ Result<EmbreeRenderer> EmbreeRenderer::create(const TriangleMesh& mesh) {
     const double length = glm::length(n);
     s->normals[t] = length > 0 ? n / length : glm::dvec3(0.0);
     s->planeOffsets[t] = glm::dot(s->normals[t], a);
-    s->materials[t] = mesh.materials[mesh.triangleMaterial[t]].material;
+    s->materials[t] = mesh.materials[mesh.triangleMaterial[t]];
   }
 
   s->scene = rtcNewScene(s->device);
@@ -191,6 +194,15 @@ MeshRenderOutput EmbreeRenderer::render(const Camera& camera, int threads, MeshR
     stats->threads = count;
   }
   return out;
+}
+
+Result<std::unique_ptr<const scene::MeshTracer>> traceMeshes(const std::vector<const TriangleMesh*>& meshes) {
+  auto merged = mergeMeshes(meshes);
+  if (!merged) return merged.error();
+  if (merged->triangles.empty()) return std::unique_ptr<const scene::MeshTracer>();
+  auto renderer = EmbreeRenderer::create(*merged);
+  if (!renderer) return renderer.error();
+  return std::unique_ptr<const scene::MeshTracer>(std::make_unique<EmbreeRenderer>(std::move(*renderer)));
 }
 
 }  // namespace nut::meshref

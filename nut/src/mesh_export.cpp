@@ -106,7 +106,7 @@ struct Instance {
 class Exporter {
  public:
   // boundsOnly: keep only the bounding box of the vertices the mesh would have (contentBounds), with
-  // no welding and no triangles, which were most of the time and memory of a large HNI's bounds.
+  // no welding and no triangles, which would be most of the time and memory of a large HNI's bounds.
   Exporter(const Hierarchy& h, const MeshExportOptions& options, bool boundsOnly = false)
       : h_(h), options_(options), boundsOnly_(boundsOnly) {
     for (int s = 0; s < kSolidCount; ++s)
@@ -114,11 +114,12 @@ class Exporter {
     findBlocksWithSolids();
   }
 
-  Result<ExportedMesh> run(const glm::dvec3& originM) {
+  Result<TriangleMesh> run(const glm::dvec3& originM) {
     const std::vector<Plane> none;
     visitTile({h_.root, Frame{}, {}, &none, 0}, dvec3(0.0));
     if (failure_) return *failure_;
     for (dvec3& p : mesh_.positions) p += originM;
+    mesh_.materials = h_.materials;
     return std::move(mesh_);
   }
 
@@ -458,7 +459,7 @@ class Exporter {
   const bool boundsOnly_;
   std::optional<WorldBox> bounds_;  // boundsOnly_: of the vertices so far
   std::unordered_map<dvec3, std::uint32_t, PointHash> vertexIds_;
-  ExportedMesh mesh_;
+  TriangleMesh mesh_;
   std::uint64_t visits_ = 0;
   std::optional<Error> failure_;
 };
@@ -480,7 +481,7 @@ void appendNumber(std::string& out, std::uint64_t value) {
 
 }  // namespace
 
-Result<ExportedMesh> exportMesh(const Hierarchy& h, const glm::dvec3& originM, const MeshExportOptions& options) {
+Result<TriangleMesh> exportMesh(const Hierarchy& h, const glm::dvec3& originM, const MeshExportOptions& options) {
   if (Status s = checkHierarchy(h); !s) return s.error();
   if (!(options.toleranceM > 0) || options.minSegmentsPerQuarter < 1 ||
       options.maxSegmentsPerQuarter < options.minSegmentsPerQuarter)
@@ -524,7 +525,7 @@ std::string mtlText(const std::vector<Material>& materials) {
 
 // The OBJ file, written in pieces of about a megabyte: the vertices, then the triangles grouped
 // by material, in their order within each group.
-bool writeObjText(std::ofstream& out, const ExportedMesh& mesh, const std::string& mtlName) {
+bool writeObjText(std::ofstream& out, const TriangleMesh& mesh, const std::string& mtlName) {
   std::string text = "# nut export-mesh: world coordinates in metres\nmtllib " + mtlName + "\n";
   const auto flushIfLarge = [&] {
     if (text.size() < (1u << 20)) return true;
@@ -566,7 +567,8 @@ bool writeObjText(std::ofstream& out, const ExportedMesh& mesh, const std::strin
 
 }  // namespace
 
-Status writeObj(const std::string& objPath, const ExportedMesh& mesh, const std::vector<Material>& materials) {
+Status writeObj(const std::string& objPath, const TriangleMesh& mesh) {
+  const std::vector<Material>& materials = mesh.materials;
   for (std::uint16_t m : mesh.triangleMaterial)
     if (m >= materials.size())
       return Error{objPath + ": material " + std::to_string(m) + " out of range (" + std::to_string(materials.size()) +

@@ -204,7 +204,7 @@ class Validator {
     const std::uint8_t* p = view_.cellTexel(header, c);
     const TexelAddress px{header.data.u + c.x + c.z * header.cells.x, header.data.v + header.cells.y - 1 - c.y};
     // Named only on failure: a large HNI has hundreds of thousands of cells, and building the name
-    // of each was most of the time validation took.
+    // of each would be most of the time validation takes.
     const auto where = [&] {
       return "block " + std::to_string(b) + " cell (" + std::to_string(c.x) + "," + std::to_string(c.y) + "," +
              std::to_string(c.z) + ") " + at(px);

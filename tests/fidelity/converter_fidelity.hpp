@@ -7,16 +7,12 @@
 #include <vector>
 
 #include <converter/convert.hpp>
-#include <converter/mesh.hpp>
-#include <meshref/image_compare.hpp>
-#include <meshref/obj.hpp>
 #include <nut/camera.hpp>
 #include <nut/image.hpp>
+#include <nut/image_compare.hpp>
+#include <nut/triangle_mesh.hpp>
 
 namespace nut::converter::testing {
-
-// The converter's mesh as the reference renderer's.
-meshref::TriangleMesh toTriangleMesh(const Mesh& mesh);
 
 // The default camera fitted to `box` (fitCamera) and three more: from behind on the left, from
 // high above, and low along the side, each at the distance where the bounding sphere fits.
@@ -27,7 +23,7 @@ std::vector<Camera> fidelityViews(const WorldBox& box, int width, int height);
 Image renderConversions(const std::vector<const Conversion*>& conversions, const Camera& camera);
 
 // The source mesh traced with Embree.
-Image renderMesh(const Mesh& mesh, const Camera& camera);
+Image renderMesh(const TriangleMesh& mesh, const Camera& camera);
 
 struct Fidelity {
   double worstWithinPct = 100;          // lowest share of pixels within the threshold over the views
@@ -36,7 +32,7 @@ struct Fidelity {
 
 // Renders both sides from every view and compares them (threshold 8/255); writes
 // <stem>.view<N>.{nut,mesh,diff}.png when a view is below minPct.
-Fidelity measureFidelity(const Mesh& source, const std::vector<const Conversion*>& conversions, const std::string& stem,
+Fidelity measureFidelity(const TriangleMesh& source, const std::vector<const Conversion*>& conversions, const std::string& stem,
                          double minPct, int width = 640, int height = 360);
 
 }  // namespace nut::converter::testing

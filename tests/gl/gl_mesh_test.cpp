@@ -42,7 +42,7 @@ TEST_P(SampleRaster, RayCastMatchesTheRasterOfTheExportedMesh) {
 
   auto rasteriser = openRenderer();
   ASSERT_TRUE(rasteriser);
-  ASSERT_TRUE(rasteriser->addMesh(viewer::meshData(*exported, s.model.materials)).ok());
+  ASSERT_TRUE(rasteriser->addMesh(*exported).ok());
   auto raster = rasteriser->render(s.camera, {});
   ASSERT_TRUE(raster.ok()) << raster.error().message;
 
@@ -57,8 +57,8 @@ TEST_P(SampleRaster, RayCastMatchesTheRasterOfTheExportedMesh) {
 INSTANTIATE_TEST_SUITE_P(Samples, SampleRaster, ::testing::Values("facade", "building", "solids"));
 
 // A closed box as a mesh with one material.
-meshref::TriangleMesh boxMesh(const glm::dvec3& lo, const glm::dvec3& hi, const Material& material) {
-  meshref::TriangleMesh m;
+TriangleMesh boxMesh(const glm::dvec3& lo, const glm::dvec3& hi, const Material& material) {
+  TriangleMesh m;
   for (int c = 0; c < 8; ++c) m.positions.push_back({c & 1 ? hi.x : lo.x, c & 2 ? hi.y : lo.y, c & 4 ? hi.z : lo.z});
   const std::uint32_t faces[6][4] = {{0, 2, 6, 4}, {1, 5, 7, 3}, {0, 4, 5, 1}, {2, 3, 7, 6}, {0, 1, 3, 2}, {4, 6, 7, 5}};
   for (const auto& f : faces) {
@@ -66,17 +66,9 @@ meshref::TriangleMesh boxMesh(const glm::dvec3& lo, const glm::dvec3& hi, const 
     m.triangles.push_back({f[0], f[2], f[3]});
   }
   m.triangleMaterial.assign(m.triangles.size(), 0);
-  m.materials.push_back({"beam", material});
-  m.bounds = {lo, hi};
+  m.materials.push_back(material);
+  m.materialNames.push_back("beam");
   return m;
-}
-
-viewer::MeshData toMeshData(const meshref::TriangleMesh& mesh) {
-  viewer::MeshData data;
-  data.positions = mesh.positions;
-  data.triangles = mesh.triangles;
-  for (std::uint32_t m : mesh.triangleMaterial) data.triangleMaterial.push_back(mesh.materials[m].material);
-  return data;
 }
 
 // Per pixel, the nearer of two CPU renders (ray caster, Embree): the reference for a mixed frame.
@@ -114,7 +106,7 @@ TEST(MixedFrame, ComplementaryMeshThroughABlockKeepsDepthOrder) {
   h.addBlock(std::move(wall));
   Scene s = compiledScene("mixed", h, glm::dvec3(0.0), 480, 270);
   ASSERT_GT(s.image.width, 0);
-  const meshref::TriangleMesh beam = boxMesh({2.6, 1.1, -1.5}, {3.0, 1.5, 2.0}, {40, 90, 200, 255, 0});
+  const TriangleMesh beam = boxMesh({2.6, 1.1, -1.5}, {3.0, 1.5, 2.0}, {40, 90, 200, 255, 0});
   s.camera.eye = glm::dvec3(5.0, 2.6, 4.2);
   s.camera.target = glm::dvec3(2.0, 1.3, 0.0);
   s.camera.nearM = 1.0;
@@ -130,7 +122,7 @@ TEST(MixedFrame, ComplementaryMeshThroughABlockKeepsDepthOrder) {
   auto renderer = openRenderer();
   ASSERT_TRUE(renderer);
   ASSERT_TRUE(renderer->addHni(s.image, s.originM).ok());
-  ASSERT_TRUE(renderer->addMesh(toMeshData(beam)).ok());
+  ASSERT_TRUE(renderer->addMesh(beam).ok());
   auto gl = renderer->render(s.camera, {});
   ASSERT_TRUE(gl.ok()) << gl.error().message;
   const Agreement a = compareFrames(outputDir("mesh"), "mixed", reference.colour, reference.windowDepth, gl->colour,

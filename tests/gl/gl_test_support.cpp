@@ -7,7 +7,7 @@
 #include <cstdio>
 #include <cstdlib>
 
-#include <meshref/image_compare.hpp>
+#include <nut/image_compare.hpp>
 #include <nut/png_io.hpp>
 
 namespace nut::gltest {
@@ -33,7 +33,7 @@ Agreement compareFrames(const std::filesystem::path& dir, const std::string& nam
                         const std::vector<float>& referenceDepth, const Image& actual,
                         const std::vector<float>& actualDepth, int threshold, double minWithinPct) {
   Agreement a;
-  auto diff = meshref::compareImages(reference, actual, threshold);
+  auto diff = nut::compareImages(reference, actual, threshold);
   if (!diff) {
     ADD_FAILURE() << name << ": " << diff.error().message;
     return a;

@@ -1,5 +1,5 @@
-// The back-end factories behind nut::viewer::createContext; each lives in its own file and is
-// compiled only when its library was found (viewer/CMakeLists.txt).
+// The back-end factories behind nut::viewer::createContext; each lives in its own file (OSMesa's
+// only in a build with NUT_GL_OSMESA, viewer/CMakeLists.txt).
 #pragma once
 
 #include <memory>

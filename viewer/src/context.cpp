@@ -52,7 +52,11 @@ Status Context::initialise(GlProcLoader loader) {
 
 Result<std::unique_ptr<Context>> createContext(Backend backend, const ContextOptions& options) {
   switch (backend) {
+#if NUT_HAVE_OSMESA
     case Backend::OSMesa: return createOSMesaContext(options);
+#else
+    case Backend::OSMesa: return Error{"osmesa: this nut was built without it (NUT_GL_OSMESA=OFF)"};
+#endif
     case Backend::Egl: return createEglContext(options);
     case Backend::Glfw: return createGlfwContext(options);
   }

@@ -27,19 +27,13 @@ void describeVertexLayout(const Gl& gl, GLuint vertexArray, GLuint buffer, GLsiz
 
 }  // namespace
 
-MeshData meshData(const ExportedMesh& mesh, const std::vector<Material>& materials) {
-  MeshData data;
-  data.positions = mesh.positions;
-  data.triangles = mesh.triangles;
-  data.triangleMaterial.reserve(mesh.triangles.size());
-  for (std::uint16_t m : mesh.triangleMaterial) data.triangleMaterial.push_back(materials[m]);
-  return data;
-}
-
-Result<GpuMesh> GpuMesh::upload(const Gl& gl, const MeshData& mesh) {
+Result<GpuMesh> GpuMesh::upload(const Gl& gl, const TriangleMesh& mesh) {
   if (mesh.triangleMaterial.size() != mesh.triangles.size())
     return Error{"mesh: " + std::to_string(mesh.triangles.size()) + " triangles but " +
                  std::to_string(mesh.triangleMaterial.size()) + " triangle materials"};
+  for (std::uint16_t m : mesh.triangleMaterial)
+    if (m >= mesh.materials.size())
+      return Error{"mesh: material " + std::to_string(m) + " of " + std::to_string(mesh.materials.size())};
   GpuMesh out(gl);
   out.bounds_ = {glm::dvec3(std::numeric_limits<double>::infinity()), glm::dvec3(-std::numeric_limits<double>::infinity())};
   for (std::size_t t = 0; t < mesh.triangles.size(); ++t)
@@ -61,7 +55,7 @@ Result<GpuMesh> GpuMesh::upload(const Gl& gl, const MeshData& mesh) {
     const glm::dvec3 normal = glm::cross(b - a, c - a);
     const double length = glm::length(normal);
     if (!(length > 0) || !std::isfinite(length)) continue;
-    const Material& m = mesh.triangleMaterial[t];
+    const Material& m = mesh.materials[mesh.triangleMaterial[t]];
     auto& into = m.opacity == 255 ? opaque : out.translucent_;
     for (const glm::dvec3& p : {a, b, c}) {
       Vertex v{};

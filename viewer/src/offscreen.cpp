@@ -53,7 +53,7 @@ Status OffscreenRenderer::addHni(const Image& hni, const glm::dvec3& originM, co
   return addHni(std::make_shared<const Image>(hni), originM, worldFromRoot);
 }
 
-Status OffscreenRenderer::addMesh(const MeshData& mesh) {
+Status OffscreenRenderer::addMesh(const TriangleMesh& mesh) {
   if (Status s = context_->makeCurrent(); !s) return s;
   auto gpu = GpuMesh::upload(context_->gl(), mesh);
   if (!gpu) return gpu.error();

@@ -50,7 +50,7 @@ Window around(const std::vector<Orientation>& faces, double centre, double halfW
 
 }  // namespace
 
-std::uint16_t dominantYaw(const Mesh& mesh, double angleToleranceDeg) {
+std::uint16_t dominantYaw(const TriangleMesh& mesh, double angleToleranceDeg) {
   std::vector<Orientation> faces;
   faces.reserve(mesh.triangles.size());
   for (const auto& t : mesh.triangles) {
@@ -96,12 +96,12 @@ double yawDegrees(std::uint16_t yaw) {
   return 360.0 * signedSteps / format::kYawSteps;
 }
 
-void toAlignedFrame(Mesh& mesh, const YawFrame& frame) {
+void toAlignedFrame(TriangleMesh& mesh, const YawFrame& frame) {
   const glm::dmat3 inverse = glm::transpose(rotationMatrix(Rotation{0, frame.yaw}));
   for (glm::dvec3& p : mesh.positions) p = inverse * (p - frame.pivotM);
 }
 
-void toWorldFrame(Mesh& mesh, const YawFrame& frame) {
+void toWorldFrame(TriangleMesh& mesh, const YawFrame& frame) {
   const glm::dmat3 r = rotationMatrix(Rotation{0, frame.yaw});
   for (glm::dvec3& p : mesh.positions) p = frame.pivotM + r * p;
 }

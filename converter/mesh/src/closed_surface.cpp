@@ -22,7 +22,7 @@ using glm::dvec3;
 // Vertices closer than this are one place, and an edge lies on another's line when its far end is
 // this close to that line. The car park sample turned 37° about the vertical and written to the
 // micrometre has its T-junctions 1-2 µm off the edges they meet: matched exactly, that closed
-// surface was taken for an open one. A millimetre is a tenth of the default plane tolerance; a
+// surface would be taken for an open one. A millimetre is a tenth of the default plane tolerance; a
 // gap this narrow is no opening.
 constexpr double kSamePlaceM = 1e-3;
 

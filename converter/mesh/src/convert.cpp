@@ -5,9 +5,9 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <functional>
 #include <iterator>
-#include <filesystem>
 #include <optional>
 
 
@@ -45,7 +45,7 @@ constexpr long long kMaxMinSavedCellsLargeGrid = 2048;
 constexpr std::size_t kMaxPricedGridCells = 100'000;
 // Variants are encoded quickly first (PngEffort::Quick, a tenth of the time); only those whose
 // quick PNG is within this factor of the smallest are encoded at PngEffort::Small, which decides.
-// Over the samples and ../shared/data (60 buildings, 1,177 variants) quick PNGs are 4-25 % larger
+// Over the samples and the external test meshes (../shared/data; 60 buildings, 1,177 variants) quick PNGs are 4-25 % larger
 // than small ones, and the winner's quick PNG was at most 14 % above the smallest (a Zurich
 // building): this margin chooses every one of them as judging all would, and skips a third of the
 // small encodes (on the high-rise, the two variants that split into many blocks).
@@ -53,8 +53,8 @@ constexpr double kJudgedMargin = 1.2;
 // The variants also start from the grid with its hidden cells filled (hidden_cells.hpp) when at
 // least this share of its cells is hidden. Filling won on the samples whose grids are 47-85 %
 // hidden (the street's houses 73-76 %: two of four), and nowhere below (Ingolstadt 32 %, the
-// Kenney houses 25-36 %, the car park 4 %, Zurich's 49 at most 28 %), where a second start only
-// doubled the search (Zurich 8.3-9.4 -> 10.6-11.4 s).
+// Kenney houses 25-36 %, the car park 4 %, Zurich's 49 at most 28 %), where a second start would
+// only double the search (Zurich 8.3-9.4 -> 10.6-11.4 s).
 constexpr double kMinHiddenShareForFill = 0.4;
 // Builds of the grid when the HNI does not fit: as asked, slopes strict, tolerance doubled.
 constexpr int kCoarserAttempts = 3;
@@ -336,7 +336,7 @@ using Progress = std::function<void(std::string_view, double)>;
 // only slopes that became wedges everywhere, then with the tolerance doubled, each time with a
 // warning in the report. `enclosing`: the whole building, when the mesh is a part of it
 // (wings.hpp); `part` names the part in the phases' names. out.report.check must be set.
-Status convertInFrame(const Mesh& mesh, const Mesh* enclosing, const ConvertOptions& options, Conversion& out,
+Status convertInFrame(const TriangleMesh& mesh, const TriangleMesh* enclosing, const ConvertOptions& options, Conversion& out,
                       Phases& phases, const std::string& part, const Progress& progress) {
   ConvertReport& report = out.report;
   std::optional<SolidGrid> grid;
@@ -392,7 +392,7 @@ std::uint64_t bytesOnDisk(const Conversion& c) {
 // complementary mesh in that frame). When a wing turned against it is found (wings.hpp), the
 // building is also converted cut in two, the wing in its own frame, and that is kept when its
 // files are smaller.
-Status convertBuilding(const Mesh& mesh, const ConvertOptions& options, Conversion& out, Phases& phases,
+Status convertBuilding(const TriangleMesh& mesh, const ConvertOptions& options, Conversion& out, Phases& phases,
                        const Progress& progress) {
   if (Status s = convertInFrame(mesh, nullptr, options, out, phases, "", progress); !s) return s;
   if (!options.turnedWings || !options.blocks.manual.empty()) return Ok{};
@@ -408,11 +408,11 @@ Status convertBuilding(const Mesh& mesh, const ConvertOptions& options, Conversi
 
   // Each part reaches a tolerance across the cut, so that the cells beside it are whole in both.
   const double reach = cut->wingAbove ? tol : -tol;
-  const Mesh mainPart = clipToHalfSpace(mesh, cut->axis, cut->atM + reach, !cut->wingAbove);
-  Mesh wingPart = clipToHalfSpace(mesh, cut->axis, cut->atM - reach, cut->wingAbove);
+  const TriangleMesh mainPart = clipToHalfSpace(mesh, cut->axis, cut->atM + reach, !cut->wingAbove);
+  TriangleMesh wingPart = clipToHalfSpace(mesh, cut->axis, cut->atM - reach, cut->wingAbove);
   const YawFrame wingFrame{cut->yaw, wingPart.bounds().centre()};
   toAlignedFrame(wingPart, wingFrame);
-  Mesh turned = mesh;
+  TriangleMesh turned = mesh;
   toAlignedFrame(turned, wingFrame);
   Conversion joined, wingOnly;
   joined.report.check = wingOnly.report.check = out.report.check;
@@ -430,9 +430,11 @@ Status convertBuilding(const Mesh& mesh, const ConvertOptions& options, Conversi
   }
   joined.image = std::move(*image);
   toWorldFrame(wingOnly.complement, wingFrame);
-  joined.complement = mergeObjects({clipToHalfSpace(joined.complement, cut->axis, cut->atM, !cut->wingAbove),
-                                    clipToHalfSpace(wingOnly.complement, cut->axis, cut->atM, cut->wingAbove)},
-                                   out.complement.name);
+  auto complement = mergeMeshes({clipToHalfSpace(joined.complement, cut->axis, cut->atM, !cut->wingAbove),
+                                 clipToHalfSpace(wingOnly.complement, cut->axis, cut->atM, cut->wingAbove)},
+                                out.complement.name);
+  if (!complement) return complement.error();
+  joined.complement = std::move(*complement);
   wing.bytesWithout = bytesOnDisk(out);
   wing.bytesWith = bytesOnDisk(joined);
   phases.end("wing join");
@@ -476,7 +478,7 @@ double ConvertReport::seconds() const {
   return sum;
 }
 
-Result<Conversion> convertMesh(Mesh mesh, const ConvertOptions& options) {
+Result<Conversion> convertMesh(TriangleMesh mesh, const ConvertOptions& options) {
   Conversion out;
   ConvertReport& report = out.report;
   report.name = mesh.name;
@@ -540,11 +542,7 @@ Status writeConversion(Conversion& conversion, const std::string& pngPath, const
   std::error_code ec;
   conversion.report.pngBytes = std::filesystem::file_size(pngPath, ec);
   if (!complementPath.empty()) {
-    ExportedMesh mesh;
-    mesh.positions = conversion.complement.positions;
-    mesh.triangles = conversion.complement.triangles;
-    mesh.triangleMaterial = conversion.complement.triangleMaterial;
-    if (Status s = writeObj(complementPath, mesh, conversion.complement.materials); !s) return s;
+    if (Status s = writeObj(complementPath, conversion.complement); !s) return s;
   }
   return Ok{};
 }

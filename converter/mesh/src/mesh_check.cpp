@@ -157,7 +157,7 @@ std::vector<std::uint8_t> smallPiecesFacingIn(const Welded& w, std::vector<std::
 // and its pieces. The steps run in the order of checkAndRepair's comment.
 class Repair {
  public:
-  Repair(Mesh& mesh, MeshCheck& check) : mesh_(mesh), check_(check), w_(weld(mesh.positions, mesh.triangles)) {}
+  Repair(TriangleMesh& mesh, MeshCheck& check) : mesh_(mesh), check_(check), w_(weld(mesh.positions, mesh.triangles)) {}
 
   void run() {
     removeDegenerateFaces();
@@ -444,7 +444,7 @@ class Repair {
     if (turned) check_.closedSurface = chainsOfUncancelled().cancel;  // pieces facing each other's way may now close it
   }
 
-  Mesh& mesh_;
+  TriangleMesh& mesh_;
   MeshCheck& check_;
   Welded w_;
   std::vector<EdgeUse> uses_;
@@ -475,7 +475,7 @@ std::string MeshCheck::summary() const {
   return s;
 }
 
-MeshCheck checkAndRepair(Mesh& mesh) {
+MeshCheck checkAndRepair(TriangleMesh& mesh) {
   MeshCheck check;
   check.triangles = mesh.triangles.size();
   Repair(mesh, check).run();

@@ -39,7 +39,7 @@ struct EncodedPrimitive {
   glm::dvec3 lo{65535}, hi{0};  // quantized bounds, for the accessor
 };
 
-std::optional<EncodedPrimitive> encodePrimitive(const Mesh& mesh, std::size_t material, const glm::dvec3& origin,
+std::optional<EncodedPrimitive> encodePrimitive(const TriangleMesh& mesh, std::size_t material, const glm::dvec3& origin,
                                                 double scale) {
   std::vector<unsigned int> indices;
   for (std::size_t t = 0; t < mesh.triangles.size(); ++t)
@@ -146,7 +146,7 @@ std::vector<std::uint8_t> glbOf(const nlohmann::json& gltf, const std::vector<st
 
 }  // namespace
 
-std::vector<std::uint8_t> meshoptGlb(const Mesh& mesh) {
+std::vector<std::uint8_t> meshoptGlb(const TriangleMesh& mesh) {
   const WorldBox box = mesh.bounds();
   const glm::dvec3 extent = glm::max(box.max - box.min, glm::dvec3(1e-9));
   const double scale = std::max({extent.x, extent.y, extent.z}) / 65535.0;  // one step, all axes (gltfpack)
@@ -183,7 +183,7 @@ std::vector<std::uint8_t> gzip(const std::vector<std::uint8_t>& bytes) {
   return out;
 }
 
-MeshSizes measureMesh(const Mesh& mesh) {
+MeshSizes measureMesh(const TriangleMesh& mesh) {
   MeshSizes s;
   s.decodedBytes = 12ull * mesh.positions.size() + 12ull * mesh.triangles.size();
   const std::vector<std::uint8_t> glb = meshoptGlb(mesh);

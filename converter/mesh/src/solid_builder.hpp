@@ -241,7 +241,7 @@ bool triangleOverlapsBox(dvec3 a, dvec3 b, dvec3 c, const dvec3& centre, const d
 // The winding-number tree, built on first use: a closed mesh without slopes never needs it.
 class LazyWinding {
  public:
-  explicit LazyWinding(const Mesh& mesh) : mesh_(mesh) {}
+  explicit LazyWinding(const TriangleMesh& mesh) : mesh_(mesh) {}
   double operator()(const dvec3& q) const {
     std::call_once(once_, [this] {
       const auto start = std::chrono::steady_clock::now();
@@ -253,7 +253,7 @@ class LazyWinding {
   double buildSeconds() const { return seconds_; }
 
  private:
-  const Mesh& mesh_;
+  const TriangleMesh& mesh_;
   mutable std::once_flag once_;
   mutable std::optional<WindingNumber> tree_;
   mutable double seconds_ = 0;
@@ -261,7 +261,7 @@ class LazyWinding {
 
 // Everything the steps share.
 struct Builder {
-  const Mesh& mesh;
+  const TriangleMesh& mesh;
   const SolidOptions& options;
   double tol;
   dvec3 origin;
@@ -286,7 +286,7 @@ struct Builder {
   std::vector<int> subPiece;             // per cell: the quadric piece whose sub-block it shows, or -1
   SolidStats stats;
 
-  Builder(const Mesh& m, const SolidOptions& o) : mesh(m), options(o), tol(o.toleranceM) {}
+  Builder(const TriangleMesh& m, const SolidOptions& o) : mesh(m), options(o), tol(o.toleranceM) {}
 
   std::size_t index(int x, int y, int z) const {
     return static_cast<std::size_t>(x) + static_cast<std::size_t>(n[0]) * (static_cast<std::size_t>(y) + static_cast<std::size_t>(n[1]) * static_cast<std::size_t>(z));
@@ -355,7 +355,7 @@ struct Builder {
     double area;
   };
   std::vector<Share> wedgeShares;  // filled by fitWedges and fitQuadrics
-  std::vector<Share> computeShares(Mesh& complement, SolidStats& area, std::vector<Share>& lost);
+  std::vector<Share> computeShares(TriangleMesh& complement, SolidStats& area, std::vector<Share>& lost);
   // Cells trimCutCells emptied, and the extent of the surface that cuts each (inside the cell).
   struct CutExtent {
     dvec3 lo{std::numeric_limits<double>::infinity()};

@@ -644,7 +644,7 @@ namespace {
 // The mesh in the grid frame (its bounding box's minimum at the origin), and the grid's size,
 // which an HNI must be able to hold.
 Status placeMesh(Builder& builder) {
-  const Mesh& mesh = builder.mesh;
+  const TriangleMesh& mesh = builder.mesh;
   const WorldBox box = mesh.bounds();
   builder.origin = box.min;
   builder.size = box.max - box.min;
@@ -705,7 +705,7 @@ bool addBoundaries(Builder& builder, std::array<std::vector<double>, 3> proposal
 
 }  // namespace
 
-Result<SolidGrid> buildSolidGrid(const Mesh& mesh, const SolidOptions& asked) {
+Result<SolidGrid> buildSolidGrid(const TriangleMesh& mesh, const SolidOptions& asked) {
   if (mesh.triangles.empty()) return Error{mesh.name + ": no triangles to convert"};
   SolidOptions options = asked;
   if (options.enclosing) options.closedSurface = false;
@@ -760,7 +760,7 @@ Result<SolidGrid> buildSolidGrid(const Mesh& mesh, const SolidOptions& asked) {
     builder.trimCutCells(winding);
     builder.stats.wedgesSeconds += lap();
     bool again = false;
-    out.complement = Mesh{};
+    out.complement = TriangleMesh{};
     SolidStats area;
     std::vector<Builder::Share> lost;
     shares = builder.computeShares(out.complement, area, lost);

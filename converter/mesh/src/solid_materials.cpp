@@ -91,7 +91,7 @@ namespace {
 // the result does not depend on the thread count.
 struct ShareChunk {
   std::vector<Builder::Share> shares, lost;
-  Mesh complement;
+  TriangleMesh complement;
   double nut = 0, complementArea = 0, hidden = 0, drawnTwice = 0;
 
   // A convex polygon in the grid frame, added to the complementary mesh (world frame) as a fan.
@@ -354,7 +354,7 @@ void shareAxisAlignedFace(const Builder& b, std::uint32_t f, ShareChunk& out) {
 // (fitQuadrics). The pieces that are empty on both sides go to `complement`, and the surface
 // statistics are counted; those beside a trimmed cell are also listed in `lost`, as shares of
 // that cell (what keeping part of it would win back: proposeTrimSplits).
-std::vector<Builder::Share> Builder::computeShares(Mesh& complement, SolidStats& area, std::vector<Share>& lost) {
+std::vector<Builder::Share> Builder::computeShares(TriangleMesh& complement, SolidStats& area, std::vector<Share>& lost) {
   constexpr std::size_t kChunk = 4096;  // faces per task on the threads
   std::vector<ShareChunk> chunks((faces.size() + kChunk - 1) / kChunk);
   parallelFor(faces.size(), kChunk, options.threads, [&](std::size_t begin, std::size_t end) {

@@ -56,7 +56,7 @@ struct SweptTriangle {
 std::vector<SweptTriangle> sweptSurface(const Builder& builder, int s) {
   std::vector<SweptTriangle> surface;
   if (builder.options.enclosing) {
-    const Mesh& whole = *builder.options.enclosing;
+    const TriangleMesh& whole = *builder.options.enclosing;
     const dvec3& origin = builder.origin;
     for (std::size_t t = 0; t < whole.triangles.size(); ++t) {
       const auto& tri = whole.triangles[t];

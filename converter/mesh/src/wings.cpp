@@ -44,10 +44,10 @@ bool within(double angle, double centre, double halfWidth) {
 
 }  // namespace
 
-std::optional<WingCut> findTurnedWing(const Mesh& aligned, double angleToleranceDeg, double toleranceM, double minShare) {
+std::optional<WingCut> findTurnedWing(const TriangleMesh& aligned, double angleToleranceDeg, double toleranceM, double minShare) {
   const double halfWidth = angleToleranceDeg * std::numbers::pi / 180;
   std::vector<Wall> walls;
-  Mesh turned;  // the faces off the frame's axes, for their own dominant orientation
+  TriangleMesh turned;  // the faces off the frame's axes, for their own dominant orientation
   turned.positions = aligned.positions;
   double total = 0;
   for (std::size_t t = 0; t < aligned.triangles.size(); ++t) {
@@ -117,8 +117,8 @@ std::optional<WingCut> findTurnedWing(const Mesh& aligned, double angleTolerance
   return cut;
 }
 
-Mesh clipToHalfSpace(const Mesh& mesh, int axis, double atM, bool keepAbove) {
-  Mesh part;
+TriangleMesh clipToHalfSpace(const TriangleMesh& mesh, int axis, double atM, bool keepAbove) {
+  TriangleMesh part;
   part.name = mesh.name;
   part.materials = mesh.materials;
   part.materialNames = mesh.materialNames;

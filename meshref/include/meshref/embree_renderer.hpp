@@ -15,21 +15,13 @@
 
 #include <glm/vec3.hpp>
 
-#include <meshref/obj.hpp>
 #include <nut/camera.hpp>
 #include <nut/error.hpp>
 #include <nut/image.hpp>
+#include <nut/triangle_mesh.hpp>
+#include <scene/scene_render.hpp>
 
 namespace nut::meshref {
-
-// What one ray found.
-struct MeshHit {
-  bool hit = false;  // an opaque face was reached
-  double distanceM = std::numeric_limits<double>::infinity();  // along the ray to that face
-  glm::dvec3 normal{0.0};            // unit geometric normal of that face, facing the ray
-  std::uint32_t triangle = 0;        // index of that face in the mesh
-  std::array<std::uint8_t, 3> colour = kBackground;  // shaded, translucent faces composited
-};
 
 struct MeshRenderOutput {
   Image colour;                  // RGBA8, alpha 255
@@ -45,7 +37,7 @@ struct MeshRenderStats {
 // Translucent faces a ray composites at most; behind them it sees the background.
 inline constexpr int kMaxTranslucentLayers = 64;
 
-class EmbreeRenderer {
+class EmbreeRenderer final : public scene::MeshTracer {
  public:
   // Builds the Embree scene once (a robust BVH over the mesh; Embree's builder uses all cores).
   // Vertices are stored relative to the mesh's bounds centre, so float precision is spent on the
@@ -61,7 +53,7 @@ class EmbreeRenderer {
 
   // One ray: world origin (metres) and unit direction. The distance is refined in double
   // precision against the plane of the face Embree found. Safe to call from many threads.
-  MeshHit trace(const glm::dvec3& originM, const glm::dvec3& direction) const;
+  scene::MeshHit trace(const glm::dvec3& originM, const glm::dvec3& direction) const override;
 
   // Renders every pixel of the camera's image with `threads` threads (0 = all cores), in 16x16
   // tiles handed out in order; the output does not depend on the thread count.
@@ -75,5 +67,9 @@ class EmbreeRenderer {
   explicit EmbreeRenderer(std::unique_ptr<Scene> scene);
   std::unique_ptr<Scene> scene_;
 };
+
+// The meshes as one Embree scene for scene::SceneRenderer (mergeMeshes first); null when they
+// have no triangles. Errors: the merge's, or Embree cannot start or build.
+Result<std::unique_ptr<const scene::MeshTracer>> traceMeshes(const std::vector<const TriangleMesh*>& meshes);
 
 }  // namespace nut::meshref

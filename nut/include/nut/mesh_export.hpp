@@ -38,6 +38,7 @@
 #include <nut/camera.hpp>
 #include <nut/error.hpp>
 #include <nut/hierarchy.hpp>
+#include <nut/triangle_mesh.hpp>
 
 namespace nut {
 
@@ -60,17 +61,13 @@ struct MeshExportOptions {
   int maxDepth = 31;
 };
 
-struct ExportedMesh {
-  std::vector<glm::dvec3> positions;                    // world metres; identical points welded
-  std::vector<std::array<std::uint32_t, 3>> triangles;  // counter-clockwise seen from outside
-  std::vector<std::uint16_t> triangleMaterial;          // per triangle, index into Hierarchy::materials
-};
 
 // The boundary of every solid cell of h, with the root block's minimum corner at originM and the
-// world axes as the root block's axes. Checks h first (checkHierarchy). Fails, with the number
+// world axes as the root block's axes. Identical points are welded, triangles turn counter-clockwise
+// seen from outside, and the mesh's materials are h.materials (triangleMaterial indexes them). Checks h first (checkHierarchy). Fails, with the number
 // that exceeded the limit, when the mesh would exceed options.maxTriangles, the walk
 // options.maxCellVisits, or the nesting options.maxDepth.
-Result<ExportedMesh> exportMesh(const Hierarchy& h, const glm::dvec3& originM, const MeshExportOptions& options = {});
+Result<TriangleMesh> exportMesh(const Hierarchy& h, const glm::dvec3& originM, const MeshExportOptions& options = {});
 
 // World bounding box of the solid content of h: the vertex bounds of its exported mesh, so that
 // `nut render` of an HNI and `nut render-mesh` of its exported mesh fit the same default camera.
@@ -82,7 +79,7 @@ Result<WorldBox> contentBounds(const Hierarchy& h, const glm::dvec3& originM);
 // extension .mtl, referenced by `mtllib`): material m is `newmtl m<m>` with Kd the sRGB bytes / 255
 // and d the opacity / 255; triangles are grouped by material (`usemtl`). Both files are written to
 // temporary siblings and renamed into place (the MTL first), so a failure never leaves a half-written
-// file. Every material index of the mesh must be below materials.size().
-Status writeObj(const std::string& objPath, const ExportedMesh& mesh, const std::vector<Material>& materials);
+// file. Every material index of the mesh must be below mesh.materials.size().
+Status writeObj(const std::string& objPath, const TriangleMesh& mesh);
 
 }  // namespace nut

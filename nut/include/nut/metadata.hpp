@@ -107,7 +107,7 @@ struct AxisView {
   // clamp, and x >= b for an integer boundary b is trunc(x) >= b: no int-to-float conversion. The
   // exact pixel is 0 where f = 0 and its reserved byte is 0 (validate() enforces both), so e - 1
   // wraps to 2^32 - 1 there, which no trunc(x) <= D exceeds, and is b - 1 elsewhere: one unsigned
-  // compare. The same cell as before for every float x, including NaN, infinities and x outside
+  // compare. The same cell as the unclamped comparison for every float x, including NaN, infinities and x outside
   // [0, D): see exactClampOf.
   int cellExact(float x) const {
     const float c = std::min(exactLast, std::max(0.0f, x));

@@ -4,8 +4,8 @@
 // Ear clipping in the plane the polygon's Newell normal picks: right for the non-convex faces
 // exporters write (an L-shaped floor or roof), which a fan around the first corner would cover
 // partly outside the face, and for a face with a hole joined to its outline by a bridge. Each ear is cut at the first
-// corner, going round from the second, that has one: a convex polygon therefore gives exactly the fan (0, k, k + 1), as
-// before. What is left of a polygon that is not simple (self-intersecting, no area) when no corner is an ear is fanned.
+// corner, going round from the second, that has one: a convex polygon therefore gives exactly the fan (0, k, k + 1).
+// What is left of a polygon that is not simple (self-intersecting, no area) when no corner is an ear is fanned.
 #pragma once
 
 #include <array>

@@ -12,7 +12,7 @@
 #include <nut/camera.hpp>
 #include <nut/error.hpp>
 #include <nut/hierarchy.hpp>
-#include <nut/mesh_export.hpp>
+#include <nut/triangle_mesh.hpp>
 
 #include <viewer/context.hpp>
 #include <viewer/frame_view.hpp>
@@ -21,25 +21,14 @@
 
 namespace nut::viewer {
 
-// A mesh in world metres with one material per triangle (what nut::ExportedMesh and
-// nut::meshref::TriangleMesh hold, in a form that depends on neither).
-struct MeshData {
-  std::vector<glm::dvec3> positions;
-  std::vector<std::array<std::uint32_t, 3>> triangles;
-  std::vector<Material> triangleMaterial;  // per triangle
-};
-
-// An exported NUT mesh (nut::exportMesh) with the hierarchy's materials.
-MeshData meshData(const ExportedMesh& mesh, const std::vector<Material>& materials);
-
 // A mesh on the GPU. Vertices are stored relative to its bounds centre (the anchor), so that
 // float precision goes to the mesh and not to its distance from the world origin; each triangle
 // has its own three vertices with its face normal (computed in double) and material. Degenerate
 // triangles, which have no normal and which no ray can hit, are dropped.
 class GpuMesh {
  public:
-  // Errors: a triangle index out of range, a material count that does not match.
-  static Result<GpuMesh> upload(const Gl& gl, const MeshData& mesh);
+  // Errors: a triangle or material index out of range, a material count that does not match.
+  static Result<GpuMesh> upload(const Gl& gl, const TriangleMesh& mesh);
 
   const WorldBox& bounds() const { return bounds_; }
   std::size_t triangleCount() const { return opaqueVertices_ / 3 + translucent_.size() / 3; }

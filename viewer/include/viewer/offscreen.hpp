@@ -55,7 +55,7 @@ class OffscreenRenderer {
   // The same with a copy of the image: an instance of its own.
   Status addHni(const Image& hni, const glm::dvec3& originM, const glm::dmat3& worldFromRoot = glm::dmat3(1.0));
   // Adds a mesh (world metres).
-  Status addMesh(const MeshData& mesh);
+  Status addMesh(const TriangleMesh& mesh);
 
   // Anti-aliases the frames that follow with FXAA (shaders/fxaa.frag); off by default, and never
   // for frames compared with the CPU renderers, which do not anti-alias.

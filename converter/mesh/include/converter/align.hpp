@@ -14,8 +14,8 @@
 
 #include <glm/vec3.hpp>
 
-#include <converter/mesh.hpp>
 #include <nut/hierarchy.hpp>
+#include <scene/obj.hpp>
 
 namespace nut::converter {
 
@@ -26,7 +26,7 @@ namespace nut::converter {
 // `angleToleranceDeg` of an axis, refined to the area-weighted mean angle of those faces. 0 when
 // that orientation lies further than the tolerance from the axes and gathers no more area than they
 // do.
-std::uint16_t dominantYaw(const Mesh& mesh, double angleToleranceDeg);
+std::uint16_t dominantYaw(const TriangleMesh& mesh, double angleToleranceDeg);
 
 // A yaw in steps as signed degrees, -180 < d <= 180.
 double yawDegrees(std::uint16_t yaw);
@@ -38,8 +38,8 @@ struct YawFrame {
 };
 
 // Turns the mesh's positions from the world into the aligned frame, and back.
-void toAlignedFrame(Mesh& mesh, const YawFrame& frame);
-void toWorldFrame(Mesh& mesh, const YawFrame& frame);
+void toAlignedFrame(TriangleMesh& mesh, const YawFrame& frame);
+void toWorldFrame(TriangleMesh& mesh, const YawFrame& frame);
 
 // Wraps a hierarchy converted in the aligned frame, whose root's minimum corner is at
 // `alignedOriginM`, so that it shows the building in the world frame: a new root block, the world

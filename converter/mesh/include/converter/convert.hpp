@@ -15,15 +15,15 @@
 #include <glm/vec3.hpp>
 
 #include <converter/blocks.hpp>
-#include <converter/mesh.hpp>
 #include <converter/mesh_check.hpp>
 #include <converter/solid.hpp>
 #include <nut/camera.hpp>
 #include <nut/error.hpp>
 #include <nut/hierarchy.hpp>
 #include <nut/hni.hpp>
-#include <nut/png_encode.hpp>
 #include <nut/image.hpp>
+#include <nut/png_encode.hpp>
+#include <scene/obj.hpp>
 
 namespace nut::converter {
 
@@ -105,14 +105,14 @@ struct Conversion {
   Hierarchy hierarchy;
   Image image;
   glm::dvec3 originM{0.0};  // world position of the root block's minimum corner
-  Mesh complement;          // faces the HNI does not show, world coordinates
+  TriangleMesh complement;          // faces the HNI does not show, world coordinates
   ConvertReport report;
 };
 
 // Converts one building. The mesh is repaired in place first (mesh_check.hpp). Errors: nothing
 // usable (no triangles after removing degenerate ones), a grid too large for memory, or an
 // HNI beyond the format's limits; each message names the building.
-Result<Conversion> convertMesh(Mesh mesh, const ConvertOptions& options = {});
+Result<Conversion> convertMesh(TriangleMesh mesh, const ConvertOptions& options = {});
 
 // The PNG text chunks `nut convert` writes with the HNI: the building's name, the generator and
 // the world origin.

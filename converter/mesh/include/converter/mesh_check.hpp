@@ -12,7 +12,7 @@
 #include <cstddef>
 #include <string>
 
-#include <converter/mesh.hpp>
+#include <scene/obj.hpp>
 
 namespace nut::converter {
 
@@ -45,6 +45,6 @@ struct MeshCheck {
 // solid is turned, and then each small open piece (below 1 % of the area: a window pane) whose
 // front the rest of the mesh, half the piece's size out, finds more inside than its back. Inside
 // is then w >= 1/2 everywhere. Positions and materials are kept.
-MeshCheck checkAndRepair(Mesh& mesh);
+MeshCheck checkAndRepair(TriangleMesh& mesh);
 
 }  // namespace nut::converter

@@ -13,7 +13,7 @@
 #include <cstdint>
 #include <vector>
 
-#include <converter/mesh.hpp>
+#include <scene/obj.hpp>
 
 namespace nut::converter {
 
@@ -24,9 +24,9 @@ struct MeshSizes {
 };
 
 // The GLB as bytes (see above).
-std::vector<std::uint8_t> meshoptGlb(const Mesh& mesh);
+std::vector<std::uint8_t> meshoptGlb(const TriangleMesh& mesh);
 
-MeshSizes measureMesh(const Mesh& mesh);
+MeshSizes measureMesh(const TriangleMesh& mesh);
 
 // gzip -9 of the bytes (zlib, gzip wrapper).
 std::vector<std::uint8_t> gzip(const std::vector<std::uint8_t>& bytes);

@@ -54,9 +54,9 @@
 
 #include <glm/vec3.hpp>
 
-#include <converter/mesh.hpp>
 #include <nut/error.hpp>
 #include <nut/hierarchy.hpp>
+#include <scene/obj.hpp>
 
 namespace nut::converter {
 
@@ -77,7 +77,7 @@ struct SolidOptions {
   // When the mesh is one part of a building, clipped to a region of it (wings.hpp): the whole
   // building in the same frame, whose winding number decides what is inside (the part alone is
   // open where it was cut, so closedSurface does not apply).
-  const Mesh* enclosing = nullptr;
+  const TriangleMesh* enclosing = nullptr;
   // Called from the calling thread with the fraction done of the pass over cells under way: the
   // cells classified, then the cut cells trimmed (each pass, and each build of the grid, starts at 0).
   std::function<void(double)> progress;
@@ -132,12 +132,12 @@ struct SolidGrid {
   // pieces cut by boundaries from elsewhere). buildHierarchy adds them and renumbers the targets.
   std::vector<Block> subBlocks;
   std::vector<Material> materials;    // cells index into these (the mesh's materials)
-  Mesh complement;                    // world coordinates, the mesh's materials
+  TriangleMesh complement;                    // world coordinates, the mesh's materials
   SolidStats stats;
 };
 
 // Converts one building. Errors: a mesh without triangles, or a grid above options.maxCells
 // (the message gives the grid size and suggests a larger tolerance).
-Result<SolidGrid> buildSolidGrid(const Mesh& mesh, const SolidOptions& options = {});
+Result<SolidGrid> buildSolidGrid(const TriangleMesh& mesh, const SolidOptions& options = {});
 
 }  // namespace nut::converter

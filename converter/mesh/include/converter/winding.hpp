@@ -13,8 +13,8 @@
 // tree); a node of the tree whose bounding sphere is far away (distance > beta * radius) is
 // replaced by its second-order expansion (Barill 2018 use orders up to two), which is exact for
 // the node's summed area vector and for its first and second moments. Second order at beta 2.2
-// is more accurate than first order at beta 3 was (5 cm from Ingolstadt's faces, max |fast -
-// exact| 0.0034 instead of 0.0058) and sums a third fewer triangles exactly (977 instead of 1,436
+// is more accurate than first order at beta 3 (5 cm from Ingolstadt's faces, max |fast - exact|
+// 0.0034 against 0.0058) and sums a third fewer triangles exactly (977 against 1,436
 // a query there, with one atan2 per leaf of up to 12 instead of one per triangle): a query takes
 // half the time. `bench/winding_bench` measures time and error.
 #pragma once

@@ -16,8 +16,8 @@
 #include <glm/vec3.hpp>
 
 #include <converter/align.hpp>
-#include <converter/mesh.hpp>
 #include <nut/hierarchy.hpp>
+#include <scene/obj.hpp>
 
 namespace nut::converter {
 
@@ -38,11 +38,11 @@ struct WingCut {
 // neither side). The cut lies two tolerances beyond the main part's last wall, so that walls on
 // the cut stay in the main part. None when the wing's walls on its side are below `minShare` of
 // the walls, or the cut leaves no wing wall on one side.
-std::optional<WingCut> findTurnedWing(const Mesh& aligned, double angleToleranceDeg, double toleranceM, double minShare);
+std::optional<WingCut> findTurnedWing(const TriangleMesh& aligned, double angleToleranceDeg, double toleranceM, double minShare);
 
 // The part of the mesh on one side of the plane axis = atM (above it when `keepAbove`): triangles
 // across the plane are clipped to it. Positions are not shared between triangles.
-Mesh clipToHalfSpace(const Mesh& mesh, int axis, double atM, bool keepAbove);
+TriangleMesh clipToHalfSpace(const TriangleMesh& mesh, int axis, double atM, bool keepAbove);
 
 // Joins the main part, converted in the building's frame with its root's minimum corner at
 // `mainOriginM`, and the wing, converted in `wingFrame` (relative to the building's frame) with

@@ -1,0 +1,57 @@
+// scene/scene.hpp — a scene to draw: one HNI, or every building of a city manifest (docs/CITY.md:
+// its HNI placed and turned as the manifest says, and its complementary mesh), plus extra meshes;
+// and the world box of their content, which the default camera fits.
+//
+// This is what `nut render` draws on either back-end, and what a viewer loads; it needs the core
+// and this module only (no converter, Embree or GL).
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include <glm/mat3x3.hpp>
+#include <glm/vec3.hpp>
+
+#include <nut/camera.hpp>
+#include <nut/error.hpp>
+#include <nut/image.hpp>
+#include <nut/png_io.hpp>
+#include <nut/triangle_mesh.hpp>
+
+namespace nut::scene {
+
+// An HNI placed in the world: its root block's minimum corner at originM, its axes turned by
+// worldFromRoot about that corner. The image must be valid (nut::validate) and outlive its users.
+struct PlacedHni {
+  const Image* image = nullptr;
+  glm::dvec3 originM{0.0};
+  glm::dmat3 worldFromRoot{1.0};
+};
+
+// A rotation about +y by `degrees`, counter-clockwise seen from above (x -> (cos, 0, -sin)): the
+// yaw of docs/FORMAT.md and of a city manifest's yaw_deg.
+glm::dmat3 yawRotation(double degrees);
+
+struct Scene {
+  std::vector<PngFile> files;          // each HNI file once, in the order first named
+  std::vector<PlacedHni> hnis;         // in the manifest's order; their images point into `files`,
+                                       // which a move of the scene keeps where they are
+  std::vector<TriangleMesh> meshes;    // complementary meshes, then the extra meshes
+  WorldBox bounds;                     // solid content of the HNIs and the meshes' vertices
+  std::vector<std::string> warnings;   // from the mesh files, one line each naming the file
+
+  std::vector<const TriangleMesh*> meshPointers() const;
+};
+
+// Why loading failed: a file could not be read as a PNG or OBJ at all, or it was read and is not
+// a valid HNI, manifest or mesh.
+enum class LoadFailure { unreadable, invalid };
+
+// Loads `input`, an HNI (PNG) or a city manifest (a file ending in .json, any case), and the
+// meshes at meshPaths. Every HNI is validated; a file placed several times is read once and its
+// instances share the image. Errors name the file, and the manifest's building where there is
+// one; `failure`, when given, says which kind of failure it was.
+Result<Scene> loadScene(const std::string& input, const std::vector<std::string>& meshPaths,
+                        LoadFailure* failure = nullptr);
+
+}  // namespace nut::scene

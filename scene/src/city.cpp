@@ -1,0 +1,107 @@
+// The city manifest (scene/city.hpp, docs/CITY.md).
+#include <scene/city.hpp>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include <nlohmann/json.hpp>
+
+#include <nut/png_io.hpp>
+
+namespace nut::scene {
+
+namespace {
+
+constexpr int kCityVersion = 1;
+
+// A relative path that does not climb out of the manifest's folder.
+bool staysInside(const std::string& path) {
+  const std::filesystem::path p(path);
+  if (p.empty() || p.is_absolute() || p.has_root_name()) return false;
+  int depth = 0;
+  for (const auto& part : p.lexically_normal()) {
+    if (part == "..") --depth;
+    else if (part != ".") ++depth;
+    if (depth < 0) return false;
+  }
+  return depth > 0;
+}
+
+}  // namespace
+
+std::string safeFileStem(const std::string& name) {
+  std::string out;
+  for (char c : name) {
+    const bool keep = (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '-' || c == '_' || c == '.';
+    out += keep ? c : '_';
+  }
+  if (out.empty() || out.front() == '.') out.insert(out.begin(), '_');
+  return out;
+}
+
+std::string cityJson(const CityManifest& city) {
+  nlohmann::json buildings = nlohmann::json::array();
+  for (const CityBuilding& b : city.buildings) {
+    nlohmann::json j = {{"name", b.name},
+                        {"hni", b.hni},
+                        {"position_m", {b.positionM.x, b.positionM.y, b.positionM.z}},
+                        {"yaw_deg", b.yawDeg}};
+    if (!b.complement.empty()) j["complement"] = b.complement;
+    buildings.push_back(std::move(j));
+  }
+  const nlohmann::json j = {{"format", "nut-city"}, {"version", kCityVersion}, {"name", city.name}, {"units", "m"},
+                            {"up", "y"}, {"buildings", buildings}};
+  return j.dump(2) + "\n";
+}
+
+Status writeCityJson(const std::string& path, const CityManifest& city) { return writeTextFile(path, cityJson(city)); }
+
+Result<CityManifest> readCityJson(const std::string& path) {
+  std::ifstream file(path);
+  if (!file) return Error{path + ": cannot open"};
+  std::stringstream text;
+  text << file.rdbuf();
+  const nlohmann::json j = nlohmann::json::parse(text.str(), nullptr, false);
+  if (j.is_discarded()) return Error{path + ": not valid JSON"};
+  if (!j.is_object() || j.value("format", "") != "nut-city") return Error{path + ": not a nut city manifest (\"format\": \"nut-city\")"};
+  if (!j.contains("version") || !j["version"].is_number_integer() || j["version"].get<int>() != kCityVersion)
+    return Error{path + ": unsupported version (this reader knows version " + std::to_string(kCityVersion) + ")"};
+  if (!j.contains("buildings") || !j["buildings"].is_array()) return Error{path + ": \"buildings\" must be an array"};
+  CityManifest city;
+  city.name = j.value("name", "");
+  int index = 0;
+  for (const nlohmann::json& b : j["buildings"]) {
+    const std::string where = path + ": building " + std::to_string(index++);
+    if (!b.is_object()) return Error{where + ": not an object"};
+    CityBuilding out;
+    if (!b.contains("name") || !b["name"].is_string()) return Error{where + ": \"name\" must be a string"};
+    out.name = b["name"].get<std::string>();
+    if (!b.contains("hni") || !b["hni"].is_string() || !staysInside(b["hni"].get<std::string>()))
+      return Error{where + " (" + out.name + "): \"hni\" must be a relative path inside the manifest's folder"};
+    out.hni = b["hni"].get<std::string>();
+    if (b.contains("complement")) {
+      if (!b["complement"].is_string() || !staysInside(b["complement"].get<std::string>()))
+        return Error{where + " (" + out.name + "): \"complement\" must be a relative path inside the manifest's folder"};
+      out.complement = b["complement"].get<std::string>();
+    }
+    if (!b.contains("position_m") || !b["position_m"].is_array() || b["position_m"].size() != 3)
+      return Error{where + " (" + out.name + "): \"position_m\" must be three numbers"};
+    for (int a = 0; a < 3; ++a) {
+      const nlohmann::json& v = b["position_m"][static_cast<std::size_t>(a)];
+      if (!v.is_number() || !std::isfinite(v.get<double>()))
+        return Error{where + " (" + out.name + "): \"position_m\" must be three finite numbers"};
+      out.positionM[a] = v.get<double>();
+    }
+    if (b.contains("yaw_deg")) {
+      if (!b["yaw_deg"].is_number() || !std::isfinite(b["yaw_deg"].get<double>()))
+        return Error{where + " (" + out.name + "): \"yaw_deg\" must be a finite number"};
+      out.yawDeg = b["yaw_deg"].get<double>();
+    }
+    city.buildings.push_back(std::move(out));
+  }
+  return city;
+}
+
+}  // namespace nut::scene

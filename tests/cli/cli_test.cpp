@@ -1,0 +1,331 @@
+// The commands users check and look at results with, run as a user runs them: `nut validate`,
+// `nut compare`, `nut export-mesh`, `nut render-mesh`, `nut render --depth --stats` and `nut
+// info`; and what `nut` itself answers (unknown commands, --version, output names of another
+// format). Each test knows its answer independently (images built here with known differences, the
+// HNI's own decode, the PFM layout, the version in CMakeLists.txt), and bad input must give one
+// `error:` line and the documented exit status: 1 invalid input, 2 usage error or unreadable file.
+// (`nut convert` and the scene renders: converter_cli_test.cpp.)
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <regex>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include <nut/hni.hpp>
+#include <nut/png_io.hpp>
+#include <scene/obj.hpp>
+
+#include "cli_support.hpp"
+
+namespace nut {
+namespace {
+
+namespace fs = std::filesystem;
+using testing::CliRun;
+
+CliRun nut(const std::string& args) { return testing::runNut(args, "cli"); }
+
+std::string out(const std::string& name) { return testing::outputPath("cli", name); }
+std::string source(const std::string& path) { return std::string(NUT_SOURCE_DIR) + "/" + path; }
+
+// An error is one line, `error: ` first, and says where.
+void expectOneErrorLine(const CliRun& r, int exitCode, const std::string& saying) {
+  EXPECT_EQ(r.exitCode, exitCode) << r.stderrText;
+  EXPECT_EQ(r.stderrText.rfind("error: ", 0), 0u) << r.stderrText;
+  EXPECT_EQ(std::count(r.stderrText.begin(), r.stderrText.end(), '\n'), 1) << r.stderrText;
+  EXPECT_NE(r.stderrText.find(saying), std::string::npos) << r.stderrText;
+}
+
+// An HNI of the repository read and decoded; the test fails where it cannot be.
+struct DecodedHni {
+  PngFile png;
+  Hierarchy h;
+};
+DecodedHni decodeOrFail(const std::string& path) {
+  DecodedHni out;
+  auto png = readPng(path);
+  EXPECT_TRUE(png.ok()) << png.error().message;
+  if (!png) return out;
+  out.png = std::move(*png);
+  auto h = decode(out.png.image);
+  EXPECT_TRUE(h.ok()) << h.error().message;
+  if (h) out.h = std::move(*h);
+  return out;
+}
+
+// A w x h image of one grey, opaque.
+Image greyImage(int w, int h, std::uint8_t grey) {
+  Image image(w, h);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      std::uint8_t* p = image.at(x, y);
+      p[0] = p[1] = p[2] = grey, p[3] = 255;
+    }
+  return image;
+}
+
+TEST(ValidateCli, ExitStatusSaysValidInvalidOrUnreadable) {
+  const std::string facade = source("samples/hni/facade.png");
+  auto png = readPng(facade);
+  ASSERT_TRUE(png.ok()) << png.error().message;
+  const CliRun valid = nut("validate " + facade);
+  EXPECT_EQ(valid.exitCode, 0) << valid.stderrText;
+  EXPECT_NE(valid.stdoutText.find("valid HNI, " + std::to_string(png->image.width) + "x" +
+                                  std::to_string(png->image.height) + " px"),
+            std::string::npos)
+      << valid.stdoutText;
+  // A PNG that is not an HNI (no magic in its first pixel).
+  ASSERT_TRUE(writePng(out("grey.png"), greyImage(16, 4, 128)).ok());
+  expectOneErrorLine(nut("validate " + out("grey.png")), 1, out("grey.png") + ": invalid HNI: ");
+  expectOneErrorLine(nut("validate " + out("missing.png")), 2, "missing.png");
+  expectOneErrorLine(nut("validate " + source("README.md")), 2, "README.md");
+}
+
+// Two images differing in known pixels: three by 9 (over the default threshold of 8), two by
+// exactly 8 (not over it) and one by 155.
+TEST(CompareCli, CountsThePixelsOverTheThresholdAndDrawsTheDiff) {
+  const Image a = greyImage(8, 4, 100);
+  Image b = a;
+  for (int x : {0, 1, 2}) b.at(x, 0)[0] = 109;
+  for (int x : {3, 4}) b.at(x, 1)[1] = 92;
+  b.at(7, 3)[0] = 255;
+  ASSERT_TRUE(writePng(out("a.png"), a).ok());
+  ASSERT_TRUE(writePng(out("b.png"), b).ok());
+  const CliRun r = nut("compare " + out("a.png") + " " + out("b.png") + " --json --diff " + out("ab-diff.png"));
+  ASSERT_EQ(r.exitCode, 0) << r.stderrText;
+  const nlohmann::json j = nlohmann::json::parse(r.stdoutText);
+  EXPECT_EQ(j.at("width").get<int>(), 8);
+  EXPECT_EQ(j.at("height").get<int>(), 4);
+  EXPECT_EQ(j.at("pixels").get<long long>(), 32);
+  EXPECT_EQ(j.at("differing").get<long long>(), 4);  // three by 9, one by 155; not the two by 8
+  EXPECT_EQ(j.at("max_difference").get<int>(), 155);
+  EXPECT_DOUBLE_EQ(j.at("differing_pct").get<double>(), 12.5);
+  EXPECT_FALSE(j.at("psnr").is_null());
+  auto diff = readPng(out("ab-diff.png"));
+  ASSERT_TRUE(diff.ok()) << diff.error().message;
+  EXPECT_EQ(diff->image.width, 8);
+  EXPECT_EQ(diff->image.height, 4);
+
+  const CliRun same = nut("compare " + out("a.png") + " " + out("a.png") + " --json");
+  ASSERT_EQ(same.exitCode, 0) << same.stderrText;
+  EXPECT_TRUE(nlohmann::json::parse(same.stdoutText).at("psnr").is_null());  // identical: no finite PSNR
+  const CliRun text = nut("compare " + out("a.png") + " " + out("b.png") + " --threshold 10");
+  EXPECT_NE(text.stdoutText.find("differing 3.1250% (1 of 32 pixels differ by more than 10"), std::string::npos)
+      << text.stdoutText;
+
+  ASSERT_TRUE(writePng(out("small.png"), greyImage(4, 4, 100)).ok());
+  expectOneErrorLine(nut("compare " + out("a.png") + " " + out("small.png")), 1, "8x4");
+  expectOneErrorLine(nut("compare " + out("a.png") + " " + out("missing.png")), 2, "missing.png");
+}
+
+// The exported mesh lies inside the HNI's root box and uses its materials.
+TEST(ExportMeshCli, WritesAnObjInsideTheHnisBox) {
+  const std::string facade = source("samples/hni/facade.png");
+  const DecodedHni hni = decodeOrFail(facade);
+  ASSERT_FALSE(hni.h.blocks.empty());
+  const CliRun r = nut("export-mesh " + facade + " -o " + out("facade.obj"));
+  ASSERT_EQ(r.exitCode, 0) << r.stderrText;
+  std::vector<std::string> warnings;
+  auto mesh = scene::readObjMesh(out("facade.obj"), warnings);
+  ASSERT_TRUE(mesh.ok()) << mesh.error().message;
+  ASSERT_FALSE(mesh->triangles.empty());
+  EXPECT_NE(r.stderrText.find(std::to_string(mesh->triangles.size()) + " triangles"), std::string::npos)
+      << r.stderrText;
+  const glm::dvec3 lo = hni.png.text.originM, hi = lo + hni.h.blocks[hni.h.root].sizeM();
+  for (const glm::dvec3& p : mesh->positions)
+    for (int a = 0; a < 3; ++a) {
+      EXPECT_GE(p[a], lo[a] - 1e-6);
+      EXPECT_LE(p[a], hi[a] + 1e-6);
+    }
+  EXPECT_EQ(mesh->materials.size(), hni.h.materials.size());
+
+  ASSERT_TRUE(writePng(out("not-an-hni.png"), greyImage(16, 4, 128)).ok());
+  expectOneErrorLine(nut("export-mesh " + out("not-an-hni.png") + " -o " + out("grey.obj")), 1, "invalid HNI");
+  EXPECT_FALSE(fs::exists(out("grey.obj")));
+  const CliRun usage = nut("export-mesh " + facade + " -o " + out("x.obj") + " --tolerance 0");
+  expectOneErrorLine(usage, 2, "must be a positive number");
+}
+
+TEST(RenderMeshCli, RendersTheSizeAskedAndRefusesBadCameras) {
+  const std::string cube = source("tests/data/two_material_cube.obj");
+  const CliRun r = nut("render-mesh " + cube + " -o " + out("cube.png") + " --size 64x48");
+  ASSERT_EQ(r.exitCode, 0) << r.stderrText;
+  auto png = readPng(out("cube.png"));
+  ASSERT_TRUE(png.ok()) << png.error().message;
+  EXPECT_EQ(png->image.width, 64);
+  EXPECT_EQ(png->image.height, 48);
+  const std::uint8_t* centre = png->image.at(32, 24);
+  const std::uint8_t background[3] = {214, 222, 230};  // docs/RENDERING.md
+  EXPECT_NE(std::memcmp(centre, background, 3), 0) << "the default camera looks at the cube";
+
+  expectOneErrorLine(nut("render-mesh " + cube + " -o " + out("x.png") + " --eye 1,2"), 2,
+                     "--eye '1,2': expected x,y,z in metres");
+  expectOneErrorLine(nut("render-mesh " + cube + " -o " + out("x.png") + " --size 0x5"), 2, "--size '0x5'");
+  expectOneErrorLine(nut("render-mesh " + cube + " -o " + out("x.png") + " --eye 0,5,0 --target 0,0,0"), 2,
+                     "must not be collinear");
+  expectOneErrorLine(nut("render-mesh " + source("README.md") + " -o " + out("x.png")), 1, "README.md");
+  expectOneErrorLine(nut("render-mesh " + out("missing.obj") + " -o " + out("x.png")), 2, "missing.obj");
+  EXPECT_FALSE(fs::exists(out("x.png")));
+}
+
+// --depth writes a PFM (docs: distance along each ray in metres, +inf for misses, bottom row
+// first) of the image's size; --stats says the size and the lookup.
+TEST(RenderCli, DepthIsAPfmOfTheImageAndStatsSayWhatRan) {
+  const std::string facade = source("samples/hni/facade.png");
+  const CliRun r = nut("render " + facade + " -o " + out("facade.png") + " --size 40x30 --depth " + out("facade.pfm") +
+                       " --stats " + out("facade-stats.json") + " --lookup heuristic");
+  ASSERT_EQ(r.exitCode, 0) << r.stderrText;
+  const std::string pfm = testing::fileText(out("facade.pfm"));
+  const std::string header = "Pf\n40 30\n-1.0\n";
+  ASSERT_EQ(pfm.size(), header.size() + 40 * 30 * sizeof(float));
+  EXPECT_EQ(pfm.substr(0, header.size()), header);
+  std::vector<float> depth(40 * 30);
+  std::memcpy(depth.data(), pfm.data() + header.size(), depth.size() * sizeof(float));
+  auto png = readPng(out("facade.png"));
+  ASSERT_TRUE(png.ok()) << png.error().message;
+  const std::uint8_t background[3] = {214, 222, 230};
+  int hits = 0;
+  for (int y = 0; y < 30; ++y)
+    for (int x = 0; x < 40; ++x) {
+      const float d = depth[static_cast<std::size_t>((29 - y) * 40 + x)];  // bottom row first
+      const bool hit = std::memcmp(png->image.at(x, y), background, 3) != 0;
+      EXPECT_EQ(std::isfinite(d), hit) << "pixel " << x << "," << y;
+      if (hit) {
+        EXPECT_GT(d, 0.0f);
+      }
+      hits += hit;
+    }
+  EXPECT_GT(hits, 100);
+  const nlohmann::json stats = nlohmann::json::parse(testing::fileText(out("facade-stats.json")));
+  EXPECT_EQ(stats.at("width").get<int>(), 40);
+  EXPECT_EQ(stats.at("height").get<int>(), 30);
+  EXPECT_EQ(stats.at("lookup").get<std::string>(), "heuristic");
+  EXPECT_EQ(stats.at("backend").get<std::string>(), "cpu");
+}
+
+// The text summary and the block list agree with the HNI's own decode.
+TEST(InfoCli, TextSummaryAndBlockListMatchTheDecode) {
+  const std::string building = source("samples/hni/building.png");
+  const DecodedHni hni = decodeOrFail(building);
+  ASSERT_FALSE(hni.h.blocks.empty());
+  const CliRun r = nut("info " + building + " --blocks");
+  ASSERT_EQ(r.exitCode, 0) << r.stderrText;
+  EXPECT_NE(r.stdoutText.find("blocks        " + std::to_string(hni.h.blocks.size()) + ", DAG depth"),
+            std::string::npos)
+      << r.stdoutText;
+  EXPECT_NE(r.stdoutText.find("materials     " + std::to_string(hni.h.materials.size())), std::string::npos);
+  // One line per block after the table's header, the root marked.
+  const auto header = r.stdoutText.find("  block    cells");
+  ASSERT_NE(header, std::string::npos) << r.stdoutText;
+  const auto footer = r.stdoutText.find("  (* the root)");
+  ASSERT_NE(footer, std::string::npos);
+  const std::string table = r.stdoutText.substr(header, footer - header);
+  EXPECT_EQ(static_cast<std::size_t>(std::count(table.begin(), table.end(), '\n')) - 1, hni.h.blocks.size());
+  EXPECT_EQ(std::count(table.begin(), table.end(), '*'), 1);
+
+  expectOneErrorLine(nut("info " + out("missing.png")), 2, "missing.png");
+}
+
+TEST(MainCli, NoCommandIsAUsageErrorAndEveryHelpHasAnExample) {
+  expectOneErrorLine(nut(""), 2, "see nut --help");
+  const CliRun help = nut("--help");
+  EXPECT_EQ(help.exitCode, 0);
+  for (const char* command : {"info", "validate", "render", "export-mesh", "render-mesh", "compare", "convert"}) {
+    EXPECT_NE(help.stdoutText.find(std::string("  ") + command + " "), std::string::npos) << command;
+    // Every command's help ends with an example of itself.
+    const CliRun own = nut(std::string(command) + " --help");
+    EXPECT_EQ(own.exitCode, 0) << command;
+    const auto example = own.stdoutText.find("Example");
+    ASSERT_NE(example, std::string::npos) << command;
+    EXPECT_NE(own.stdoutText.find(std::string("nut ") + command + " ", example), std::string::npos) << command;
+  }
+}
+
+
+// A misspelt command is named, with the commands there are, on one line.
+TEST(MainCli, AnUnknownCommandIsNamedWithTheCommandsThereAre) {
+  const CliRun r = nut("rendr samples/hni/building.png -o x.png");
+  expectOneErrorLine(r, 2, "unknown command 'rendr'");
+  EXPECT_NE(r.stderrText.find("info, validate, render, export-mesh, render-mesh, compare, convert"), std::string::npos)
+      << r.stderrText;
+  expectOneErrorLine(nut("--json rendr"), 2, "unknown command 'rendr'");
+}
+
+// The version is the one the project declares in its CMakeLists.txt.
+TEST(MainCli, VersionIsTheProjects) {
+  const std::string cmake = testing::fileText(source("CMakeLists.txt"));
+  std::smatch version;
+  ASSERT_TRUE(std::regex_search(cmake, version, std::regex(R"(project\(nut VERSION ([0-9.]+))"))) << cmake;
+  const CliRun r = nut("--version");
+  EXPECT_EQ(r.exitCode, 0) << r.stderrText;
+  EXPECT_EQ(r.stdoutText, "nut " + version[1].str() + "\n");
+  EXPECT_EQ(r.stderrText, "");
+}
+
+// Usage errors exit 2, whatever the command; input that is read but invalid exits 1.
+TEST(MainCli, UsageErrorsExitTwoAndInvalidInputOne) {
+  const std::string facade = source("samples/hni/facade.png");
+  expectOneErrorLine(nut("info"), 2, "file is required");
+  expectOneErrorLine(nut("info " + facade + " --colour"), 2, "--colour");
+  expectOneErrorLine(nut("render " + facade), 2, "--output is required");
+  expectOneErrorLine(nut("compare " + facade + " " + facade + " --threshold 300"), 2, "--threshold");
+  expectOneErrorLine(nut("render " + facade + " -o " + out("x.png") + " --size 5"), 2, "--size '5'");
+  ASSERT_TRUE(writePng(out("plain.png"), greyImage(16, 4, 128)).ok());
+  expectOneErrorLine(nut("info " + out("plain.png")), 1, "invalid HNI");
+}
+
+// A file is never written under a name that says another format: the command refuses the name
+// before it reads anything, naming the path and the extension it writes, and writes nothing.
+TEST(OutputNamesCli, ANameOfAnotherFormatIsRefusedBeforeAnyWork) {
+  const std::string facade = source("samples/hni/facade.png");
+  const std::string cube = source("tests/data/two_material_cube.obj");
+  for (const char* name : {"refused.png", "refused.jpg", "refused.txt", "refused.stl", "refused.mtl"})
+    fs::remove(out(name));
+  const std::string png = " -o " + out("refused.png") + " --size 8x6";
+  const struct {
+    std::string args, path, expected;
+  } cases[] = {
+      {"render " + facade + " -o " + out("refused.jpg"), out("refused.jpg"), ".png"},
+      {"render " + facade + png + " --depth " + out("refused.txt"), out("refused.txt"), ".pfm"},
+      {"render " + facade + png + " --stats " + out("refused.txt"), out("refused.txt"), ".json"},
+      {"render-mesh " + cube + " -o " + out("refused.jpg"), out("refused.jpg"), ".png"},
+      {"render-mesh " + cube + png + " --depth " + out("refused.txt"), out("refused.txt"), ".pfm"},
+      {"render-mesh " + cube + png + " --stats " + out("refused.txt"), out("refused.txt"), ".json"},
+      {"compare " + facade + " " + facade + " --diff " + out("refused.jpg"), out("refused.jpg"), ".png"},
+      {"export-mesh " + facade + " -o " + out("refused.stl"), out("refused.stl"), ".obj"},
+  };
+  for (const auto& c : cases) {
+    SCOPED_TRACE(c.args);
+    const CliRun r = nut(c.args);
+    expectOneErrorLine(r, 2, c.path + ": ");
+    EXPECT_NE(r.stderrText.find("expected a name ending in " + c.expected), std::string::npos) << r.stderrText;
+    EXPECT_EQ(r.stdoutText, "");
+  }
+  for (const char* name : {"refused.png", "refused.jpg", "refused.txt", "refused.stl", "refused.mtl"})
+    EXPECT_FALSE(fs::exists(out(name))) << name;
+}
+
+// Extensions are compared in any case: upper-case names are written as the lower-case ones are.
+TEST(OutputNamesCli, ExtensionsInUpperCaseAreAccepted) {
+  const std::string facade = source("samples/hni/facade.png");
+  CliRun r = nut("render " + facade + " -o " + out("UPPER.PNG") + " --size 8x6 --depth " + out("UPPER.PFM") +
+                 " --stats " + out("UPPER.JSON"));
+  ASSERT_EQ(r.exitCode, 0) << r.stderrText;
+  auto png = readPng(out("UPPER.PNG"));
+  ASSERT_TRUE(png.ok()) << png.error().message;
+  EXPECT_EQ(png->image.width, 8);
+  EXPECT_EQ(testing::fileText(out("UPPER.PFM")).substr(0, 7), "Pf\n8 6\n");
+  EXPECT_EQ(nlohmann::json::parse(testing::fileText(out("UPPER.JSON"))).at("width").get<int>(), 8);
+  r = nut("export-mesh " + facade + " -o " + out("UPPER.OBJ"));
+  ASSERT_EQ(r.exitCode, 0) << r.stderrText;
+  EXPECT_TRUE(scene::readObj(out("UPPER.OBJ")).ok());
+}
+
+}  // namespace
+}  // namespace nut

@@ -1,0 +1,335 @@
+// `nut convert` as a user runs it: outputs (HNI with the world origin, complementary mesh, report
+// JSON), one HNI per object and city.json with -o FOLDER, the progress bar's absence with --quiet,
+// manual blocks, output names (a .png in any case is one HNI; another extension is refused), and
+// the exit codes: 1 for invalid input, 2 for usage errors and unreadable input; and the
+// commands users look at the result with: `nut render` (its default lookup, an HNI with its
+// complementary mesh, a city manifest), `nut info --blocks --bytes`.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include <nut/hni.hpp>
+#include <nut/image_compare.hpp>
+#include <nut/png_io.hpp>
+#include <scene/city.hpp>
+
+#include "cli_support.hpp"
+#include "converter/converter_support.hpp"
+
+namespace nut::converter {
+namespace {
+
+namespace fs = std::filesystem;
+
+using ::nut::testing::CliRun;
+
+CliRun nut(const std::string& args) { return ::nut::testing::runNut(args, "converter_cli"); }
+
+std::string out(const std::string& name) { return (fs::path(testing::outputDir("converter_cli")) / name).string(); }
+std::string sample(const std::string& name) { return std::string(NUT_SOURCE_DIR) + "/samples/obj/" + name; }
+
+TEST(ConvertCli, WritesTheHniComplementAndReport) {
+  fs::remove(out("carpark.png"));
+  const CliRun r = nut("convert " + sample("carpark.obj") + " -o " + out("carpark.png") + " --complement " + out("carpark-rest.obj") +
+                    " --report " + out("carpark.json"));
+  ASSERT_EQ(r.exitCode, 0) << r.stderrText;
+  EXPECT_NE(r.stderrText.find("surface"), std::string::npos) << r.stderrText;
+
+  auto png = readPng(out("carpark.png"));
+  ASSERT_TRUE(png.ok()) << png.error().message;
+  EXPECT_TRUE(validate(png->image).ok());
+  EXPECT_EQ(png->text.generator, "nut convert");
+  EXPECT_NEAR(png->text.originM.y, 0.0, 1e-9);
+  EXPECT_TRUE(fs::exists(out("carpark-rest.obj")));
+  EXPECT_TRUE(fs::exists(out("carpark-rest.mtl")));
+
+  std::ifstream in(out("carpark.json"));
+  const nlohmann::json report = nlohmann::json::parse(in);
+  for (const char* key : {"phases_seconds", "input", "grid", "surface", "blocks", "hni"}) EXPECT_TRUE(report.contains(key)) << key;
+  EXPECT_EQ(report["hni"]["bytes_png"].get<long long>(), static_cast<long long>(fs::file_size(out("carpark.png"))));
+  EXPECT_GT(report["surface"]["nut_fraction"].get<double>(), 0.9);
+  EXPECT_GT(report["phases_seconds"]["solid"].get<double>(), 0.0);
+}
+
+TEST(ConvertCli, QuietPrintsNothing) {
+  const CliRun r = nut("convert " + sample("house.obj") + " -o " + out("house.png") + " --quiet");
+  ASSERT_EQ(r.exitCode, 0) << r.stderrText;
+  EXPECT_EQ(r.stderrText, "");
+}
+
+TEST(ConvertCli, AFolderGetsOneHniPerObjectAndACityManifest) {
+  fs::remove_all(out("street"));
+  const CliRun r = nut("convert " + sample("street.obj") + " -o " + out("street") + " --quiet");
+  ASSERT_EQ(r.exitCode, 0) << r.stderrText;
+  auto city = scene::readCityJson(out("street/city.json"));
+  ASSERT_TRUE(city.ok()) << city.error().message;
+  ASSERT_EQ(city->buildings.size(), 4u);
+  for (const scene::CityBuilding& b : city->buildings) {
+    auto png = readPng(out("street/" + b.hni));
+    ASSERT_TRUE(png.ok()) << b.hni;
+    EXPECT_EQ(png->text.originM, b.positionM) << b.name;  // the manifest places each HNI at its own origin
+  }
+}
+
+// Buildings are converted side by side; the files do not depend on how many at once, the manifest
+// keeps the objects' order, and an object that cannot be converted is named, with no manifest.
+TEST(ConvertCli, AFolderIsTheSameWhateverTheThreadsAndNamesAFailingObject) {
+  fs::remove_all(out("street1"));
+  fs::remove_all(out("street2"));
+  ASSERT_EQ(nut("convert " + sample("street.obj") + " -o " + out("street1") + " --quiet --png-effort small --threads 1").exitCode, 0);
+  ASSERT_EQ(nut("convert " + sample("street.obj") + " -o " + out("street2") + " --quiet --png-effort small --threads 3").exitCode, 0);
+  const auto bytes = [](const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    return std::string(std::istreambuf_iterator<char>(in), {});
+  };
+  auto city = scene::readCityJson(out("street2/city.json"));
+  ASSERT_TRUE(city.ok()) << city.error().message;
+  ASSERT_EQ(city->buildings.size(), 4u);
+  EXPECT_EQ(city->buildings[0].name, "street_a");
+  EXPECT_EQ(city->buildings[3].name, "street_d");
+  EXPECT_EQ(bytes(out("street1/city.json")), bytes(out("street2/city.json")));
+  for (const scene::CityBuilding& b : city->buildings) EXPECT_EQ(bytes(out("street1/" + b.hni)), bytes(out("street2/" + b.hni))) << b.hni;
+
+  const std::string obj = out("two.obj");
+  std::ofstream(obj) << "o good\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 0 1\nv 1 0 1\nv 1 1 1\nv 0 1 1\n"
+                        "f 1 4 3 2\nf 5 6 7 8\nf 1 2 6 5\nf 2 3 7 6\nf 3 4 8 7\nf 4 1 5 8\n"
+                        "o sheet\nv 0 0 5\nv 1 0 5\nv 1 0 6\nf 9 10 11\n";
+  fs::remove_all(out("two"));
+  const CliRun r = nut("convert " + obj + " -o " + out("two") + " --quiet");
+  EXPECT_EQ(r.exitCode, 1);
+  EXPECT_NE(r.stderrText.find("object 'sheet'"), std::string::npos) << r.stderrText;
+  EXPECT_FALSE(fs::exists(out("two/city.json")));
+}
+
+TEST(ConvertCli, ManualBlocksAreReported) {
+  // One window bay of the residential block's back facade, as a person would select it.
+  const CliRun r = nut("convert " + sample("residential.obj") + " -o " + out("residential.png") + " --quiet --no-auto-blocks" +
+                    " --block 1.03,4.13,-0.04:2.47,5.59,0.22 --report " + out("residential.json"));
+  ASSERT_EQ(r.exitCode, 0) << r.stderrText;
+  std::ifstream in(out("residential.json"));
+  const nlohmann::json report = nlohmann::json::parse(in);
+  ASSERT_FALSE(report["blocks"]["found"].empty());
+  EXPECT_TRUE(report["blocks"]["found"][0]["manual"].get<bool>());
+  EXPECT_GE(report["blocks"]["found"][0]["instances"].get<int>(), 2);
+}
+
+TEST(ConvertCli, ExitCodes) {
+  CliRun r = nut("convert /nonexistent/building.obj -o " + out("x.png"));
+  EXPECT_EQ(r.exitCode, 2);
+  EXPECT_NE(r.stderrText.find("error: /nonexistent/building.obj: cannot open"), std::string::npos) << r.stderrText;
+
+  {
+    std::ofstream(out("nan.obj")) << "v 0 0 0\nv nan 1 0\nv 0 1 1\nf 1 2 3\n";
+  }
+  r = nut("convert " + out("nan.obj") + " -o " + out("nan.png"));
+  EXPECT_EQ(r.exitCode, 1);
+  EXPECT_NE(r.stderrText.find("nan.obj:2: vertex 2 has a non-finite coordinate"), std::string::npos) << r.stderrText;
+  EXPECT_FALSE(fs::exists(out("nan.png")));
+
+  {
+    std::ofstream(out("empty.obj")) << "# nothing\n";
+  }
+  r = nut("convert " + out("empty.obj") + " -o " + out("empty.png"));
+  EXPECT_EQ(r.exitCode, 1);
+  EXPECT_NE(r.stderrText.find("no faces"), std::string::npos) << r.stderrText;
+
+  r = nut("convert " + sample("house.obj") + " -o " + out("h.png") + " --block 1,2,3");
+  EXPECT_EQ(r.exitCode, 2);
+  EXPECT_NE(r.stderrText.find("--block '1,2,3'"), std::string::npos) << r.stderrText;
+
+  r = nut("convert " + sample("house.obj") + " -o " + out("h.png") + " --tolerance -1");
+  EXPECT_EQ(r.exitCode, 2);
+}
+
+// `-o NAME.PNG` is one HNI, as `-o name.png` is, not a folder.
+TEST(ConvertCli, AnUpperCaseDotPngIsOneHni) {
+  fs::remove_all(out("HOUSE.PNG"));
+  const CliRun r = nut("convert " + sample("house.obj") + " -o " + out("HOUSE.PNG") + " --quiet --png-effort small");
+  ASSERT_EQ(r.exitCode, 0) << r.stderrText;
+  ASSERT_TRUE(fs::is_regular_file(out("HOUSE.PNG")));
+  auto png = readPng(out("HOUSE.PNG"));
+  ASSERT_TRUE(png.ok()) << png.error().message;
+  EXPECT_TRUE(validate(png->image).ok());
+}
+
+// An output name of another format is refused before the OBJ is read, naming the path and the
+// extension written there, and nothing is written; a folder whose name has a dot ends in '/'.
+TEST(ConvertCli, AnOutputNameOfAnotherFormatIsRefusedBeforeAnyWork) {
+  const std::string house = sample("house.obj");
+  for (const char* name : {"refused.jpg", "refused.png", "refused.ply", "refused.txt"}) fs::remove_all(out(name));
+  const struct {
+    std::string args, path, expected;
+  } cases[] = {
+      {" -o " + out("refused.jpg"), out("refused.jpg"), "a name ending in .png) or a folder"},
+      {" -o " + out("refused.png") + " --complement " + out("refused.ply"), out("refused.ply"),
+       "expected a name ending in .obj"},
+      {" -o " + out("refused.png") + " --report " + out("refused.txt"), out("refused.txt"),
+       "expected a name ending in .json"},
+  };
+  for (const auto& c : cases) {
+    SCOPED_TRACE(c.args);
+    const CliRun r = nut("convert " + house + c.args);
+    EXPECT_EQ(r.exitCode, 2);
+    EXPECT_EQ(r.stderrText.rfind("error: ", 0), 0u) << r.stderrText;
+    EXPECT_EQ(std::count(r.stderrText.begin(), r.stderrText.end(), '\n'), 1) << r.stderrText;
+    EXPECT_NE(r.stderrText.find(c.path + ": "), std::string::npos) << r.stderrText;
+    EXPECT_NE(r.stderrText.find(c.expected), std::string::npos) << r.stderrText;
+  }
+  for (const char* name : {"refused.jpg", "refused.png", "refused.ply", "refused.txt"})
+    EXPECT_FALSE(fs::exists(out(name))) << name;
+
+  fs::remove_all(out("house.v2"));
+  const CliRun r = nut("convert " + house + " -o " + out("house.v2") + "/ --quiet --png-effort small");
+  ASSERT_EQ(r.exitCode, 0) << r.stderrText;
+  EXPECT_TRUE(fs::is_regular_file(out("house.v2/city.json")));
+}
+
+// `nut render`, with which users look at what `nut convert` wrote: both back-ends read the exact
+// metadata rows unless told otherwise (the heuristic leaves holes along block seams).
+TEST(RenderCli, DefaultLookupIsExactOnBothBackends) {
+  const std::string hni = std::string(NUT_SOURCE_DIR) + "/samples/hni/building.png";
+  const auto lookupOf = [](const std::string& statsPath) {
+    std::ifstream in(statsPath);
+    return nlohmann::json::parse(in).at("lookup").get<std::string>();
+  };
+  CliRun r = nut("render " + hni + " -o " + out("render-default.png") + " --size 160x90 --stats " + out("render-default.json"));
+  ASSERT_EQ(r.exitCode, 0) << r.stderrText;
+  EXPECT_EQ(lookupOf(out("render-default.json")), "exact");
+  r = nut("render " + hni + " -o " + out("render-exact.png") + " --size 160x90 --lookup exact");
+  ASSERT_EQ(r.exitCode, 0) << r.stderrText;
+  EXPECT_EQ(readPng(out("render-default.png"))->image, readPng(out("render-exact.png"))->image);
+  r = nut("render " + hni + " -o " + out("render-gl.png") + " --size 160x90 --backend gl --stats " + out("render-gl.json"));
+  ASSERT_EQ(r.exitCode, 0) << r.stderrText;
+  EXPECT_EQ(lookupOf(out("render-gl.json")), "exact");
+  r = nut("render " + hni + " -o " + out("render-gl-heuristic.png") + " --size 160x90 --backend gl --lookup heuristic --stats " +
+          out("render-gl-heuristic.json"));
+  ASSERT_EQ(r.exitCode, 0) << r.stderrText;
+  EXPECT_EQ(lookupOf(out("render-gl-heuristic.json")), "heuristic");
+}
+
+// Percentage of pixels of two renders (PNG files) within 8/255.
+double withinPct(const std::string& a, const std::string& b) {
+  auto x = readPng(a), y = readPng(b);
+  if (!x || !y) return 0.0;
+  auto diff = nut::compareImages(x->image, y->image, 8);
+  return diff ? 100.0 - diff->differingPct : 0.0;
+}
+
+// `nut render --mesh` on the CPU back-end: the complementary mesh is drawn with the HNI, nearest
+// surface in front, so that the pair renders like the source mesh (the car park's ramps are in
+// its complementary mesh).
+TEST(RenderCli, AnHniWithItsComplementaryMeshRendersLikeTheSource) {
+  CliRun r = nut("convert " + sample("carpark.obj") + " -o " + out("carpark-r.png") + " --complement " + out("carpark-r-rest.obj") + " --quiet");
+  ASSERT_EQ(r.exitCode, 0) << r.stderrText;
+  r = nut("render-mesh " + sample("carpark.obj") + " -o " + out("carpark-r-source.png") + " --size 640x360");
+  ASSERT_EQ(r.exitCode, 0) << r.stderrText;
+  r = nut("render " + out("carpark-r.png") + " -o " + out("carpark-r-alone.png") + " --size 640x360");
+  ASSERT_EQ(r.exitCode, 0) << r.stderrText;
+  r = nut("render " + out("carpark-r.png") + " --mesh " + out("carpark-r-rest.obj") + " -o " + out("carpark-r-with.png") + " --size 640x360");
+  ASSERT_EQ(r.exitCode, 0) << r.stderrText;
+  const double alone = withinPct(out("carpark-r-alone.png"), out("carpark-r-source.png"));
+  const double with = withinPct(out("carpark-r-with.png"), out("carpark-r-source.png"));
+  std::printf("carpark 640x360 within 8/255 of the source: HNI alone %.3f %%, with --mesh %.3f %%\n", alone, with);
+  EXPECT_GE(with, 99.9);
+  EXPECT_GT(100.0 - alone, 3 * (100.0 - with));  // the ramps are missing without the mesh
+}
+
+// `nut render city.json`: every building of a converted street with its complementary mesh, where
+// the manifest puts it, like the source street; the GL back-end draws the same scene.
+TEST(RenderCli, ACityManifestRendersLikeItsSourceOnBothBackends) {
+  fs::remove_all(out("street-city"));
+  CliRun r = nut("convert " + sample("street.obj") + " -o " + out("street-city") + "/ --quiet");
+  ASSERT_EQ(r.exitCode, 0) << r.stderrText;
+  const std::string city = out("street-city") + "/city.json";
+  r = nut("render " + city + " -o " + out("street-city-cpu.png") + " --size 640x360");
+  ASSERT_EQ(r.exitCode, 0) << r.stderrText;
+  EXPECT_NE(r.stderrText.find("4 HNIs, 4 meshes"), std::string::npos) << r.stderrText;
+  r = nut("render " + city + " -o " + out("street-city-gl.png") + " --size 640x360 --backend gl");
+  ASSERT_EQ(r.exitCode, 0) << r.stderrText;
+  r = nut("render-mesh " + sample("street.obj") + " -o " + out("street-source.png") + " --size 640x360");
+  ASSERT_EQ(r.exitCode, 0) << r.stderrText;
+  const double cpu = withinPct(out("street-city-cpu.png"), out("street-source.png"));
+  const double gl = withinPct(out("street-city-gl.png"), out("street-city-cpu.png"));
+  std::printf("street as a city, 640x360 within 8/255: CPU vs source %.3f %%, GL vs CPU %.3f %%\n", cpu, gl);
+  EXPECT_GE(cpu, 99.9);
+  EXPECT_GE(gl, 99.9);
+
+  // A town of 10,000 buildings naming the street's four HNIs 2,500 times each: each file is read
+  // once, and GL packs each image once into its atlas (a copy per building took 35 s to lay out,
+  // and the atlas then placed them by another rule than the layout's and ran out of room).
+  auto manifest = scene::readCityJson(city);
+  ASSERT_TRUE(manifest.ok());
+  scene::CityManifest town;
+  for (int i = 0; i < 50; ++i)
+    for (int j = 0; j < 50; ++j)
+      for (scene::CityBuilding b : manifest->buildings) {
+        b.positionM += glm::dvec3(60.0 * i, 0.0, 60.0 * j);
+        b.complement.clear();  // in world coordinates: it would not move with the copy
+        town.buildings.push_back(b);
+      }
+  {
+    std::ofstream(out("street-city") + "/town.json") << scene::cityJson(town);
+  }
+  r = nut("render " + out("street-city") + "/town.json -o " + out("town-cpu.png") + " --size 320x180");
+  ASSERT_EQ(r.exitCode, 0) << r.stderrText;
+  r = nut("render " + out("street-city") + "/town.json -o " + out("town-gl.png") + " --size 320x180 --backend gl");
+  ASSERT_EQ(r.exitCode, 0) << r.stderrText;
+  EXPECT_GE(withinPct(out("town-gl.png"), out("town-cpu.png")), 99.9);
+}
+
+TEST(RenderCli, ABadManifestFailsNamingWhere) {
+  fs::create_directories(out("bad-city"));
+  {
+    std::ofstream(out("bad-city/missing.json"))
+        << R"({"format": "nut-city", "version": 1, "buildings": [{"name": "a", "hni": "a.png", "position_m": [0, 0, 0]}]})";
+    std::ofstream(out("bad-city/empty.json")) << R"({"format": "nut-city", "version": 1, "buildings": []})";
+    std::ofstream(out("bad-city/outside.json"))
+        << R"({"format": "nut-city", "version": 1, "buildings": [{"name": "a", "hni": "../a.png", "position_m": [0, 0, 0]}]})";
+    std::ofstream(out("bad-city/broken.json")) << R"({"format": "nut-city", )";
+  }
+  CliRun r = nut("render " + out("bad-city/missing.json") + " -o " + out("bad-city/x.png"));
+  EXPECT_EQ(r.exitCode, 2);
+  EXPECT_NE(r.stderrText.find("error: " + out("bad-city") + "/a.png"), std::string::npos) << r.stderrText;
+  r = nut("render " + out("bad-city/empty.json") + " -o " + out("bad-city/x.png"));
+  EXPECT_EQ(r.exitCode, 1);
+  EXPECT_NE(r.stderrText.find("empty.json: the manifest lists no buildings"), std::string::npos) << r.stderrText;
+  r = nut("render " + out("bad-city/outside.json") + " -o " + out("bad-city/x.png"));
+  EXPECT_EQ(r.exitCode, 1);
+  EXPECT_NE(r.stderrText.find("outside.json: building 0 (a): \"hni\" must be a relative path inside"), std::string::npos) << r.stderrText;
+  r = nut("render " + out("bad-city/broken.json") + " -o " + out("bad-city/x.png"));
+  EXPECT_EQ(r.exitCode, 1);
+  EXPECT_NE(r.stderrText.find("broken.json: not valid JSON"), std::string::npos) << r.stderrText;
+  EXPECT_FALSE(fs::exists(out("bad-city/x.png")));
+}
+
+// `nut info --blocks --bytes`, with which users see where an HNI's bytes go.
+TEST(InfoCli, ListsBlocksAndWhatEachKindOfRecordCosts) {
+  const std::string hni = std::string(NUT_SOURCE_DIR) + "/samples/hni/facade.png";
+  const CliRun r = nut("info " + hni + " --json --blocks --bytes > " + out("facade-info.json"));
+  ASSERT_EQ(r.exitCode, 0) << r.stderrText;
+  std::ifstream in(out("facade-info.json"));
+  const nlohmann::json j = nlohmann::json::parse(in);
+  EXPECT_EQ(j.at("block_list").size(), j.at("blocks").get<std::size_t>());
+  long long cells = 0;
+  for (const auto& b : j.at("block_list")) cells += b.at("cells")[0].get<long long>() * b.at("cells")[1].get<long long>() * b.at("cells")[2].get<long long>();
+  EXPECT_EQ(cells, j.at("cells").get<long long>());
+  const auto& kinds = j.at("png_bytes_by_record").at("kinds");
+  EXPECT_EQ(kinds.at("data components").at("pixels").get<long long>(), cells);
+  // Every kind of record costs something, and no part costs more than the whole.
+  const long long total = j.at("png_bytes_by_record").at("pixels_png_bytes").get<long long>();
+  for (const auto& [name, kind] : kinds.items()) {
+    EXPECT_GT(kind.at("png_bytes").get<long long>(), 0) << name;
+    EXPECT_LT(kind.at("png_bytes").get<long long>(), total) << name;
+  }
+  EXPECT_LT(total, j.at("bytes_png").get<long long>());  // the file adds its chunks
+}
+
+}  // namespace
+}  // namespace nut::converter
