@@ -3,14 +3,31 @@
 #               converted OBJ samples (two buildings, a street as a city) beside their meshes, under out/
 #   make test   install deps, build, run the whole test suite (ctest) and a short fuzz run
 #   make bench  run the benchmarks (Release build)
-#   make fuzz   run the libFuzzer target longer: make fuzz FUZZ_SECONDS=600
+#   make fuzz   run one libFuzzer target longer: make fuzz TARGET=obj_fuzz FUZZ_SECONDS=600
+#               (targets: hni_fuzz, the default, obj_fuzz, city_fuzz, render_fuzz; docs/INPUT.md)
 #   make core-check   build the core alone (optional modules off) and check what it links
 BUILD ?= build
 CORE_BUILD ?= build-core
 FUZZ_BUILD ?= build-fuzz
 JOBS ?= $(shell nproc)
 FUZZ_SECONDS ?= 600
+TARGET ?= hni_fuzz
+# make test's fuzz run: hni_fuzz for FUZZ_SMOKE_SECONDS, each other target for
+# FUZZ_SMOKE_OTHER_SECONDS: 30 + 3 x 10 = 60 s in all.
 FUZZ_SMOKE_SECONDS ?= 30
+FUZZ_SMOKE_OTHER_SECONDS ?= 10
+FUZZ_TARGETS = hni_fuzz obj_fuzz city_fuzz render_fuzz
+# Per target: dictionary and input size cap (the OBJ seeds reach 50 KB).
+FUZZ_FLAGS_obj_fuzz = -dict=tests/fuzz/obj.dict -max_len=65536
+FUZZ_FLAGS_city_fuzz = -dict=tests/fuzz/city.dict
+# $(call fuzz-run,TARGET,SECONDS): the target over its generated seeds (where it writes what it
+# finds), its hand-made inputs and its regressions; a unit running over 10 s counts as a hang.
+fuzz-run = $(FUZZ_BUILD)/tests/$(1) -max_total_time=$(2) -timeout=10 -print_final_stats=1 $(FUZZ_FLAGS_$(1)) \
+  -artifact_prefix=$(FUZZ_BUILD)/$(1)- $(FUZZ_BUILD)/corpus/$(1) $(wildcard tests/fuzz/corpus/$(1) tests/fuzz/regressions/$(1))
+# $(call fuzz-smoke-run,TARGET,SECONDS): one target briefly, showing its executions and any report.
+fuzz-smoke-run = echo "fuzz: $(1) for $(2) s" >&2; $(call fuzz-run,$(1),$(2)) 2>&1 | \
+  grep -E "^(stat::number_of_executed_units|==|SUMMARY)|ERROR|fuzz check failed" >&2 || true;
+fuzz-smoke-seconds = $(if $(filter hni_fuzz,$(1)),$(FUZZ_SMOKE_SECONDS),$(FUZZ_SMOKE_OTHER_SECONDS))
 OUT ?= out
 
 .PHONY: deps build test demo bench fuzz fuzz-build fuzz-smoke core-check clean
@@ -40,19 +57,16 @@ fuzz-build: deps
 	@cmake -S . -B $(FUZZ_BUILD) -DCMAKE_BUILD_TYPE=RelWithDebInfo -DNUT_BUILD_FUZZ=ON -DNUT_BUILD_BENCH=OFF \
 	  -DCMAKE_C_COMPILER=clang-14 -DCMAKE_CXX_COMPILER=clang++-14 \
 	  -DCMAKE_CXX_FLAGS="-fsanitize=fuzzer-no-link,address,undefined -fno-sanitize-recover=undefined" > /dev/null
-	@cmake --build $(FUZZ_BUILD) -j $(JOBS) --target hni_fuzz fuzz_seeds
-	@mkdir -p $(FUZZ_BUILD)/corpus
+	@cmake --build $(FUZZ_BUILD) -j $(JOBS) --target $(FUZZ_TARGETS) fuzz_seeds
 	@$(FUZZ_BUILD)/tests/fuzz_seeds $(FUZZ_BUILD)/corpus
 
+# Fails when any run left a crash, leak, out-of-memory or timeout input (kept until removed).
 fuzz-smoke: fuzz-build
-	@echo "fuzz: hni_fuzz for $(FUZZ_SMOKE_SECONDS) s" >&2
-	@$(FUZZ_BUILD)/tests/hni_fuzz -max_total_time=$(FUZZ_SMOKE_SECONDS) -print_final_stats=1 \
-	  -artifact_prefix=$(FUZZ_BUILD)/ $(FUZZ_BUILD)/corpus 2>&1 | grep -E "^(stat::number_of_executed_units|==|SUMMARY)|ERROR" >&2 || true
-	@! ls $(FUZZ_BUILD)/crash-* $(FUZZ_BUILD)/leak-* $(FUZZ_BUILD)/timeout-* 2>/dev/null
+	@$(foreach t,$(FUZZ_TARGETS),$(call fuzz-smoke-run,$(t),$(call fuzz-smoke-seconds,$(t))))
+	@! ls $(FUZZ_BUILD)/*-crash-* $(FUZZ_BUILD)/*-leak-* $(FUZZ_BUILD)/*-oom-* $(FUZZ_BUILD)/*-timeout-* 2>/dev/null
 
 fuzz: fuzz-build
-	@$(FUZZ_BUILD)/tests/hni_fuzz -max_total_time=$(FUZZ_SECONDS) -print_final_stats=1 \
-	  -artifact_prefix=$(FUZZ_BUILD)/ $(FUZZ_BUILD)/corpus
+	@$(call fuzz-run,$(TARGET),$(FUZZ_SECONDS))
 
 clean:
 	rm -rf $(BUILD) $(CORE_BUILD) $(FUZZ_BUILD) $(OUT)

@@ -27,9 +27,9 @@ void CameraOptions::addTo(CLI::App& cmd) {
 Result<Camera> CameraOptions::resolve(const WorldBox& bounds) const {
   int width = 0, height = 0;
   char tail = 0;
-  if (std::sscanf(size.c_str(), "%dx%d%c", &width, &height, &tail) != 2 || width < 1 || height < 1 || width > 16384 ||
-      height > 16384)
-    return Error{"--size '" + size + "': expected WxH, each 1..16384"};
+  if (std::sscanf(size.c_str(), "%dx%d%c", &width, &height, &tail) != 2 || width < 1 || height < 1 ||
+      width > kMaxRenderSize || height > kMaxRenderSize)
+    return Error{"--size '" + size + "': expected WxH, each 1.." + std::to_string(kMaxRenderSize)};
   Camera camera = fitCamera(bounds, width, height, fovDeg);
   if (!eye.empty()) {
     auto v = parseVector(eye, "eye");

@@ -23,9 +23,9 @@ struct CompareOptions {
 };
 
 int run(const CompareOptions& o) {
-  auto a = readPng(o.a);
+  auto a = readPng(o.a, PngKind::Render);
   if (!a) return fail(a.error().message, kUnreadable);
-  auto b = readPng(o.b);
+  auto b = readPng(o.b, PngKind::Render);
   if (!b) return fail(b.error().message, kUnreadable);
   auto d = nut::compareImages(a->image, b->image, o.threshold);
   if (!d) return fail(d.error().message, kInvalid);

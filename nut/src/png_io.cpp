@@ -18,6 +18,8 @@
 #include <memory>
 #include <sstream>
 
+#include <nut/format.hpp>
+
 #include "atomic_file.hpp"
 
 namespace nut {
@@ -34,9 +36,20 @@ std::uint32_t readBigEndian32(const std::uint8_t* p) {
          static_cast<std::uint32_t>(p[2]) << 8 | p[3];
 }
 
-// Walks the PNG chunk structure (signature, lengths, CRCs, IHDR first, IEND last) so that a
-// truncated or corrupted file gets one precise error instead of a decoder's complaint midway.
-Status checkPngStructure(const std::string& path, const std::vector<std::uint8_t>& bytes) {
+// The size an IHDR chunk's data declares, refused over the kind's bound (png_io.hpp).
+Status checkDeclaredSize(const std::string& path, const std::uint8_t* ihdr, PngKind kind) {
+  const std::uint32_t width = readBigEndian32(ihdr), height = readBigEndian32(ihdr + 4);
+  const bool hni = kind == PngKind::Hni;
+  const auto most = static_cast<std::uint32_t>(hni ? format::kMaxImageSize : kMaxRenderSize);
+  if (width <= most && height <= most) return Ok{};
+  return Error{path + ": the PNG declares " + std::to_string(width) + "x" + std::to_string(height) + " pixels; " +
+               (hni ? "an HNI" : "a render") + " has at most " + std::to_string(most) + "x" + std::to_string(most)};
+}
+
+// Walks the PNG chunk structure (signature, lengths, CRCs, IHDR first with a size within the
+// kind's bound, IEND last) so that a truncated, corrupted or oversized file gets one precise error
+// instead of a decoder's complaint midway, or an allocation the size of what the file declares.
+Status checkPngStructure(const std::string& path, const std::vector<std::uint8_t>& bytes, PngKind kind) {
   static constexpr std::uint8_t kSignature[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
   if (bytes.size() < 8 || !std::equal(kSignature, kSignature + 8, bytes.begin()))
     return Error{path + ": not a PNG file (bad signature)"};
@@ -54,6 +67,8 @@ Status checkPngStructure(const std::string& path, const std::vector<std::uint8_t
     if (crc != readBigEndian32(&bytes[at + 8 + length]))
       return Error{path + ": corrupt PNG: CRC mismatch in chunk " + type + " at byte " + std::to_string(at)};
     if (first && type != "IHDR") return Error{path + ": corrupt PNG: first chunk is " + type + ", not IHDR"};
+    if (first && length >= 8)  // a shorter IHDR is libpng's error to report
+      if (Status s = checkDeclaredSize(path, &bytes[at + 8], kind); !s) return s;
     first = false;
     at += 12 + length;
     if (type == "IEND") return Ok{};
@@ -71,9 +86,6 @@ struct PngDecode {
   std::vector<png_bytep> rows;
   std::vector<std::pair<std::string, std::string>> text;  // keyword, value; later chunks win
 };
-
-// The largest image read: 2^28 pixels (1 GiB of RGBA8), far above any HNI (4096 x 4096).
-constexpr std::uint64_t kMaxPixels = std::uint64_t{1} << 28;
 
 void onPngError(png_structp png, png_const_charp message) {
   static_cast<PngDecode*>(png_get_error_ptr(png))->error = message;
@@ -101,9 +113,7 @@ void decodeInto(png_structp png, png_infop info, png_infop end, PngDecode& decod
   png_read_info(png, info);
   if (png_get_bit_depth(png, info) > 8) png_error(png, "not an 8-bit PNG (16 bits per channel)");
   decode.width = static_cast<int>(png_get_image_width(png, info));
-  decode.height = static_cast<int>(png_get_image_height(png, info));
-  if (static_cast<std::uint64_t>(decode.width) * static_cast<std::uint64_t>(decode.height) > kMaxPixels)
-    png_error(png, "image too large (over 2^28 pixels)");
+  decode.height = static_cast<int>(png_get_image_height(png, info));  // bounded by checkDeclaredSize
   // Widen whatever the file holds to RGBA8 as stored: palette and grey to RGB, transparency
   // chunks to alpha, missing alpha = 255. No gamma or colour conversion is asked for.
   const png_byte colour = png_get_color_type(png, info);
@@ -187,7 +197,7 @@ Status writeHni(const std::string& path, const Image& image, const HniText& text
   return files::writeWhole(path, encodePng(image, &text, effort));
 }
 
-Result<PngFile> readPng(const std::string& path) {
+Result<PngFile> readPng(const std::string& path, PngKind kind) {
   std::error_code error;
   if (!std::filesystem::is_regular_file(path, error)) return Error{path + ": no such file"};
   std::vector<std::uint8_t> bytes;
@@ -196,7 +206,7 @@ Result<PngFile> readPng(const std::string& path) {
     if (!in) return Error{path + ": cannot open (" + std::strerror(errno) + ")"};
     bytes.assign(std::istreambuf_iterator<char>(in), {});
   }
-  if (Status s = checkPngStructure(path, bytes); !s) return s.error();
+  if (Status s = checkPngStructure(path, bytes, kind); !s) return s.error();
   const auto decode = std::make_unique<PngDecode>();
   if (Status s = decodePng(path, bytes, *decode); !s) return s.error();
   PngFile file;

@@ -78,7 +78,13 @@ class BlockerGrid {
  private:
   glm::ivec2 cell(const glm::dvec2& p) const {
     const glm::dvec2 at = (p - lo_) * scale_;
-    return glm::clamp(glm::ivec2(static_cast<int>(at.x), static_cast<int>(at.y)), glm::ivec2(0), glm::ivec2(side_ - 1));
+    return {index(at.x), index(at.y)};
+  }
+  // The cell of a place along one axis, clamped before the conversion to int: a polygon wider than
+  // a double's range has an infinite extent, a zero scale, and places that are NaN (inf * 0).
+  int index(double at) const {
+    if (!(at >= 1)) return 0;  // also NaN
+    return at < side_ ? static_cast<int>(at) : side_ - 1;
   }
   std::size_t cellOf(const glm::dvec2& p) const {
     const glm::ivec2 c = cell(p);

@@ -63,12 +63,20 @@ Result<CityManifest> readCityJson(const std::string& path) {
   if (!file) return Error{path + ": cannot open"};
   std::stringstream text;
   text << file.rdbuf();
-  const nlohmann::json j = nlohmann::json::parse(text.str(), nullptr, false);
+  return parseCityJson(text.str(), path);
+}
+
+Result<CityManifest> parseCityJson(const std::string& text, const std::string& path) {
+  const nlohmann::json j = nlohmann::json::parse(text, nullptr, false);
   if (j.is_discarded()) return Error{path + ": not valid JSON"};
-  if (!j.is_object() || j.value("format", "") != "nut-city") return Error{path + ": not a nut city manifest (\"format\": \"nut-city\")"};
-  if (!j.contains("version") || !j["version"].is_number_integer() || j["version"].get<int>() != kCityVersion)
+  // A value's type is checked, or the value compared, before it is read: nlohmann's value() and
+  // get() throw on a wrong type, and get<int>() wraps an integer beyond int's range.
+  if (!j.is_object() || !j.contains("format") || j["format"] != "nut-city")
+    return Error{path + ": not a nut city manifest (\"format\": \"nut-city\")"};
+  if (!j.contains("version") || !j["version"].is_number_integer() || j["version"] != kCityVersion)
     return Error{path + ": unsupported version (this reader knows version " + std::to_string(kCityVersion) + ")"};
   if (!j.contains("buildings") || !j["buildings"].is_array()) return Error{path + ": \"buildings\" must be an array"};
+  if (j.contains("name") && !j["name"].is_string()) return Error{path + ": \"name\" must be a string"};
   CityManifest city;
   city.name = j.value("name", "");
   int index = 0;

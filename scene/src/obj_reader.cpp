@@ -115,8 +115,9 @@ struct MaterialTable {
   }
 };
 
-void readMtl(const fs::path& path, MaterialTable& table, std::vector<std::string>& warnings) {
-  auto text = readTextFile(path.string());
+void readMtl(const fs::path& path, const MtlReader& readText, MaterialTable& table,
+             std::vector<std::string>& warnings) {
+  auto text = readText(path.string());
   if (!text) {
     warnings.push_back(text.error().message + "; its materials use the default grey");
     return;
@@ -159,21 +160,25 @@ void readMtl(const fs::path& path, MaterialTable& table, std::vector<std::string
   flush();
 }
 
-// Collects faces of one object into a mesh with its own compact vertex list.
-struct ObjectBuilder {
-  TriangleMesh mesh;
-  std::vector<std::uint32_t> local;  // file vertex -> mesh vertex, or max
+constexpr std::uint32_t kNoVertex = std::numeric_limits<std::uint32_t>::max();
 
-  std::uint32_t vertex(std::uint32_t fileIndex, const std::vector<glm::dvec3>& positions) {
-    if (local.size() < positions.size()) local.resize(positions.size(), std::numeric_limits<std::uint32_t>::max());
-    std::uint32_t& slot = local[fileIndex];
-    if (slot == std::numeric_limits<std::uint32_t>::max()) {
-      slot = static_cast<std::uint32_t>(mesh.positions.size());
-      mesh.positions.push_back(positions[fileIndex]);
+// Gives a mesh whose triangles hold file vertex indices its own compact vertex list, in order of
+// first use. `slot` (file vertex -> mesh vertex) has an entry per file vertex, all kNoVertex, and
+// is left so: one scratch list serves every object, so memory stays linear in the file however
+// many objects it has.
+void compactVertices(TriangleMesh& mesh, const std::vector<glm::dvec3>& positions, std::vector<std::uint32_t>& slot) {
+  std::vector<std::uint32_t> used;  // file vertices, in mesh order
+  for (auto& triangle : mesh.triangles)
+    for (std::uint32_t& v : triangle) {
+      if (slot[v] == kNoVertex) {
+        slot[v] = static_cast<std::uint32_t>(used.size());
+        used.push_back(v);
+        mesh.positions.push_back(positions[v]);
+      }
+      v = slot[v];
     }
-    return slot;
-  }
-};
+  for (std::uint32_t v : used) slot[v] = kNoVertex;
+}
 
 }  // namespace
 
@@ -233,22 +238,26 @@ bool hasThreeCorners(const std::vector<std::uint32_t>& corners) {
 Result<ObjContents> readObj(const std::string& path, const ObjReadOptions& options) {
   auto text = readTextFile(path);
   if (!text) return text.error();
+  return readObjText(*text, path, readTextFile, options);
+}
+
+Result<ObjContents> readObjText(const std::string& text, const std::string& path, const MtlReader& readMtlText,
+                                const ObjReadOptions& options) {
   ObjContents out;
-  out.fileBytes = text->size();
+  out.fileBytes = text.size();
   const fs::path folder = fs::path(path).parent_path();
 
   // Objects split at `o` when the file has any, else at `g`.
   bool hasO = false;
-  forEachLine(*text, [&](long long, std::string_view l) {
+  forEachLine(text, [&](long long, std::string_view l) {
     if (!hasO && l.size() >= 2 && l[0] == 'o' && isSpace(l[1])) hasO = true;
   });
-  // '\0' matches no key: one mesh for the whole file.
-  const char splitKey = options.oneMesh ? '\0' : hasO ? 'o' : 'g';
+  const char splitKey = hasO ? 'o' : 'g';
 
   MaterialTable table;
   std::vector<glm::dvec3> positions;
-  std::vector<ObjectBuilder> objects(1);
-  objects[0].mesh.name = fs::path(path).stem().string();
+  std::vector<TriangleMesh> objects(1);  // triangles with file vertex indices until the end
+  objects[0].name = fs::path(path).stem().string();
   std::map<std::string, std::size_t> objectByName;
   std::size_t current = 0;
   int material = -1;  // -1: none named yet
@@ -258,7 +267,7 @@ Result<ObjContents> readObj(const std::string& path, const ObjReadOptions& optio
   std::vector<std::array<std::uint32_t, 3>> faceTriangles;
   std::string error;
 
-  forEachLine(*text, [&](long long line, std::string_view l) {
+  forEachLine(text, [&](long long line, std::string_view l) {
     if (!error.empty()) return;
     Tokens t(l);
     std::string_view key;
@@ -281,25 +290,21 @@ Result<ObjContents> readObj(const std::string& path, const ObjReadOptions& optio
         return;
       }
       if (material < 0) material = table.fallback();
-      ObjectBuilder& object = objects[current];
+      TriangleMesh& object = objects[current];
       cornerPoints.clear();
       for (std::uint32_t c : corners) cornerPoints.push_back(positions[c]);
       triangulatePolygon(cornerPoints, faceTriangles);
       for (const auto& [a, b, c] : faceTriangles) {
-        if (options.oneMesh)
-          object.mesh.triangles.push_back({corners[a], corners[b], corners[c]});
-        else
-          object.mesh.triangles.push_back({object.vertex(corners[a], positions), object.vertex(corners[b], positions),
-                                           object.vertex(corners[c], positions)});
-        object.mesh.triangleMaterial.push_back(static_cast<std::uint16_t>(material));
+        object.triangles.push_back({corners[a], corners[b], corners[c]});
+        object.triangleMaterial.push_back(static_cast<std::uint16_t>(material));
       }
-    } else if (key.size() == 1 && key.front() == splitKey) {
+    } else if (!options.oneMesh && key.size() == 1 && key.front() == splitKey) {
       std::string name(t.rest());
-      if (name.empty()) name = objects[0].mesh.name + "_" + std::to_string(objects.size());
+      if (name.empty()) name = objects[0].name + "_" + std::to_string(objects.size());
       auto [it, inserted] = objectByName.try_emplace(name, objects.size());
       if (inserted) {
         objects.emplace_back();
-        objects.back().mesh.name = name;
+        objects.back().name = name;
       }
       current = it->second;
     } else if (key == "usemtl") {
@@ -313,7 +318,7 @@ Result<ObjContents> readObj(const std::string& path, const ObjReadOptions& optio
     } else if (key == "mtllib") {
       // Names may not contain spaces here: several files on one line are allowed by the format.
       std::string_view token;
-      while (t.next(token)) readMtl(folder / std::string(token), table, out.warnings);
+      while (t.next(token)) readMtl(folder / std::string(token), readMtlText, table, out.warnings);
     }
   });
   if (!error.empty()) return Error{error};
@@ -323,11 +328,13 @@ Result<ObjContents> readObj(const std::string& path, const ObjReadOptions& optio
     out.warnings.push_back(path + ": " + std::to_string(droppedFaces) +
                            " faces with fewer than 3 distinct vertices dropped");
 
-  for (ObjectBuilder& object : objects) {
-    if (object.mesh.triangles.empty()) continue;
-    object.mesh.materials = table.materials;
-    object.mesh.materialNames = table.names;
-    out.objects.push_back(std::move(object.mesh));
+  std::vector<std::uint32_t> slot(options.oneMesh ? 0 : positions.size(), kNoVertex);
+  for (TriangleMesh& object : objects) {
+    if (object.triangles.empty()) continue;
+    if (!options.oneMesh) compactVertices(object, positions, slot);
+    object.materials = table.materials;
+    object.materialNames = table.names;
+    out.objects.push_back(std::move(object));
   }
   if (out.objects.empty())
     return Error{path + ": no faces (the file has " + std::to_string(positions.size()) + " vertices)"};

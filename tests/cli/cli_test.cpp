@@ -22,6 +22,7 @@
 #include <scene/obj.hpp>
 
 #include "cli_support.hpp"
+#include "declared_size_png.hpp"
 
 namespace nut {
 namespace {
@@ -87,6 +88,20 @@ TEST(ValidateCli, ExitStatusSaysValidInvalidOrUnreadable) {
   expectOneErrorLine(nut("validate " + source("README.md")), 2, "README.md");
 }
 
+// A 70-byte PNG whose IHDR declares 100000 x 100000 pixels: every command that reads it says so in
+// one error line and exits 2 (unreadable), before allocating the pixels (png_io_test measures that).
+TEST(ValidateCli, OversizedPngIsOneErrorLine) {
+  const std::string huge = out("declares-100000x100000.png");
+  testing::writePngDeclaringSize(huge, 100000, 100000);
+  const std::string asHni = huge + ": the PNG declares 100000x100000 pixels; an HNI has at most 4096x4096";
+  expectOneErrorLine(nut("info " + huge), 2, asHni);
+  expectOneErrorLine(nut("validate " + huge), 2, asHni);
+  expectOneErrorLine(nut("render " + huge + " -o " + out("huge-render.png")), 2, asHni);
+  EXPECT_FALSE(fs::exists(out("huge-render.png")));
+  const std::string asRender = huge + ": the PNG declares 100000x100000 pixels; a render has at most 16384x16384";
+  expectOneErrorLine(nut("compare " + huge + " " + huge), 2, asRender);
+}
+
 // Two images differing in known pixels: three by 9 (over the default threshold of 8), two by
 // exactly 8 (not over it) and one by 155.
 TEST(CompareCli, CountsThePixelsOverTheThresholdAndDrawsTheDiff) {
@@ -107,7 +122,7 @@ TEST(CompareCli, CountsThePixelsOverTheThresholdAndDrawsTheDiff) {
   EXPECT_EQ(j.at("max_difference").get<int>(), 155);
   EXPECT_DOUBLE_EQ(j.at("differing_pct").get<double>(), 12.5);
   EXPECT_FALSE(j.at("psnr").is_null());
-  auto diff = readPng(out("ab-diff.png"));
+  auto diff = readPng(out("ab-diff.png"), PngKind::Render);
   ASSERT_TRUE(diff.ok()) << diff.error().message;
   EXPECT_EQ(diff->image.width, 8);
   EXPECT_EQ(diff->image.height, 4);
@@ -156,7 +171,7 @@ TEST(RenderMeshCli, RendersTheSizeAskedAndRefusesBadCameras) {
   const std::string cube = source("tests/data/two_material_cube.obj");
   const CliRun r = nut("render-mesh " + cube + " -o " + out("cube.png") + " --size 64x48");
   ASSERT_EQ(r.exitCode, 0) << r.stderrText;
-  auto png = readPng(out("cube.png"));
+  auto png = readPng(out("cube.png"), PngKind::Render);
   ASSERT_TRUE(png.ok()) << png.error().message;
   EXPECT_EQ(png->image.width, 64);
   EXPECT_EQ(png->image.height, 48);
@@ -187,7 +202,7 @@ TEST(RenderCli, DepthIsAPfmOfTheImageAndStatsSayWhatRan) {
   EXPECT_EQ(pfm.substr(0, header.size()), header);
   std::vector<float> depth(40 * 30);
   std::memcpy(depth.data(), pfm.data() + header.size(), depth.size() * sizeof(float));
-  auto png = readPng(out("facade.png"));
+  auto png = readPng(out("facade.png"), PngKind::Render);
   ASSERT_TRUE(png.ok()) << png.error().message;
   const std::uint8_t background[3] = {214, 222, 230};
   int hits = 0;
@@ -317,7 +332,7 @@ TEST(OutputNamesCli, ExtensionsInUpperCaseAreAccepted) {
   CliRun r = nut("render " + facade + " -o " + out("UPPER.PNG") + " --size 8x6 --depth " + out("UPPER.PFM") +
                  " --stats " + out("UPPER.JSON"));
   ASSERT_EQ(r.exitCode, 0) << r.stderrText;
-  auto png = readPng(out("UPPER.PNG"));
+  auto png = readPng(out("UPPER.PNG"), PngKind::Render);
   ASSERT_TRUE(png.ok()) << png.error().message;
   EXPECT_EQ(png->image.width, 8);
   EXPECT_EQ(testing::fileText(out("UPPER.PFM")).substr(0, 7), "Pf\n8 6\n");

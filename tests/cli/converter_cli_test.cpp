@@ -204,7 +204,8 @@ TEST(RenderCli, DefaultLookupIsExactOnBothBackends) {
   EXPECT_EQ(lookupOf(out("render-default.json")), "exact");
   r = nut("render " + hni + " -o " + out("render-exact.png") + " --size 160x90 --lookup exact");
   ASSERT_EQ(r.exitCode, 0) << r.stderrText;
-  EXPECT_EQ(readPng(out("render-default.png"))->image, readPng(out("render-exact.png"))->image);
+  EXPECT_EQ(readPng(out("render-default.png"), PngKind::Render)->image,
+            readPng(out("render-exact.png"), PngKind::Render)->image);
   r = nut("render " + hni + " -o " + out("render-gl.png") + " --size 160x90 --backend gl --stats " + out("render-gl.json"));
   ASSERT_EQ(r.exitCode, 0) << r.stderrText;
   EXPECT_EQ(lookupOf(out("render-gl.json")), "exact");
@@ -216,7 +217,7 @@ TEST(RenderCli, DefaultLookupIsExactOnBothBackends) {
 
 // Percentage of pixels of two renders (PNG files) within 8/255.
 double withinPct(const std::string& a, const std::string& b) {
-  auto x = readPng(a), y = readPng(b);
+  auto x = readPng(a, PngKind::Render), y = readPng(b, PngKind::Render);
   if (!x || !y) return 0.0;
   auto diff = nut::compareImages(x->image, y->image, 8);
   return diff ? 100.0 - diff->differingPct : 0.0;

@@ -1,4 +1,4 @@
-// libFuzzer target: arbitrary bytes as an HNI image must never crash validate/decode, and what
+// Fuzz target hni_fuzz: arbitrary bytes as an HNI image must never crash validate/decode, and what
 // validate accepts must decode, measure and re-encode to a valid image.
 // Input framing (see frame.hpp): u16 width, then RGBA8 pixels; the height is what the bytes fill.
 #include <cstdint>
@@ -7,8 +7,9 @@
 #include <nut/hni.hpp>
 
 #include "frame.hpp"
+#include "targets.hpp"
 
-extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+int nut::fuzz::hniInput(const std::uint8_t* data, std::size_t size) {
   const nut::Image image = nut::fuzz::unframe(data, size);
   if (!nut::validate(image).ok()) return 0;
   auto decoded = nut::decode(image);

@@ -1,27 +1,48 @@
-// `fuzz_seeds DIR`: writes framed HNIs of seeded random hierarchies as a starting corpus.
+// `fuzz_seeds DIR`: writes every fuzz target's generated seeds (seed_inputs.hpp) as a libFuzzer
+// corpus, one folder per target: DIR/hni_fuzz, DIR/render_fuzz, DIR/obj_fuzz, DIR/city_fuzz.
+// Seeds over kMaxSeedBytes (the larger sample OBJs) are left to the plain corpus test: libFuzzer
+// mutates small inputs faster, and the Makefile caps obj_fuzz inputs at that size.
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <string>
 
-#include <nut/hni.hpp>
+#include "seed_inputs.hpp"
 
-#include "../random_hierarchy.hpp"
-#include "frame.hpp"
+namespace {
+
+constexpr std::size_t kMaxSeedBytes = 65536;
+
+bool writeSeeds(const std::filesystem::path& folder, const std::vector<nut::fuzz::SeedInput>& seeds) {
+  std::error_code error;
+  std::filesystem::create_directories(folder, error);
+  for (const auto& seed : seeds) {
+    if (seed.bytes.size() > kMaxSeedBytes) continue;
+    std::ofstream out(folder / seed.name, std::ios::binary);
+    out.write(reinterpret_cast<const char*>(seed.bytes.data()), static_cast<std::streamsize>(seed.bytes.size()));
+    if (!out) {
+      std::fprintf(stderr, "error: %s: cannot write\n", (folder / seed.name).c_str());
+      return false;
+    }
+  }
+  return true;
+}
+
+}  // namespace
 
 int main(int argc, char** argv) {
   if (argc != 2) {
     std::fprintf(stderr, "usage: fuzz_seeds DIR\n");
+    return 2;
+  }
+  const std::filesystem::path dir = argv[1];
+  auto hni = nut::fuzz::hniSeeds();
+  if (!hni) {
+    std::fprintf(stderr, "error: %s\n", hni.error().message.c_str());
     return 1;
   }
-  for (std::uint64_t seed = 0; seed < 32; ++seed) {
-    auto image = nut::compile(nut::testing::randomHierarchy(seed));
-    if (!image) {
-      std::fprintf(stderr, "error: seed %llu: %s\n", static_cast<unsigned long long>(seed), image.error().message.c_str());
-      return 1;
-    }
-    const auto bytes = nut::fuzz::frame(*image);
-    std::ofstream(std::string(argv[1]) + "/seed" + std::to_string(seed), std::ios::binary)
-        .write(reinterpret_cast<const char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
-  }
-  return 0;
+  const bool ok = writeSeeds(dir / "hni_fuzz", *hni) && writeSeeds(dir / "render_fuzz", *hni) &&
+                  writeSeeds(dir / "obj_fuzz", nut::fuzz::objSeeds()) &&
+                  writeSeeds(dir / "city_fuzz", nut::fuzz::citySeeds());
+  return ok ? 0 : 1;
 }

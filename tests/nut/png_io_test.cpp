@@ -2,6 +2,7 @@
 // double-precision origin, atomic writes, and one clear error for files that are not PNGs.
 #include <gtest/gtest.h>
 #include <png.h>
+#include <sys/resource.h>
 #include <zlib.h>
 
 #include <csetjmp>
@@ -14,6 +15,7 @@
 
 #include <nut/png_io.hpp>
 
+#include "declared_size_png.hpp"
 #include "test_files.hpp"
 
 namespace nut {
@@ -151,6 +153,49 @@ TEST(PngIo, CorruptChunkIsNamed) {
   EXPECT_NE(r.error().message.find("CRC mismatch in chunk"), std::string::npos) << r.error().message;
 }
 
+// Peak resident memory of this process so far, in bytes (Linux reports ru_maxrss in KiB).
+std::uint64_t peakRssBytes() {
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
+  return static_cast<std::uint64_t>(usage.ru_maxrss) * 1024;
+}
+
+// A file of 70 bytes that declares more pixels than its kind may have is refused from its IHDR,
+// with one error naming the file and the declared size, before any pixel buffer is allocated: the
+// peak resident memory grows by less than 16 MiB, where 16384 x 16384 RGBA8 would be 1 GiB.
+TEST(PngIo, OversizedIhdrIsRefusedBeforeAllocating) {
+  struct Case {
+    std::uint32_t width, height;
+    PngKind kind;
+    std::string bound;
+  };
+  const std::string hni = "an HNI has at most 4096x4096", render = "a render has at most 16384x16384";
+  const Case cases[] = {{100000, 100000, PngKind::Hni, hni},       {16384, 16384, PngKind::Hni, hni},
+                        {4097, 1, PngKind::Hni, hni},              {6, 4097, PngKind::Hni, hni},
+                        {4294967295u, 1, PngKind::Hni, hni},       {100000, 100000, PngKind::Render, render},
+                        {16385, 16, PngKind::Render, render}};
+  for (const Case& c : cases) {
+    const std::string size = std::to_string(c.width) + "x" + std::to_string(c.height);
+    const fs::path path = outputDir() / ("declares-" + size + ".png");
+    testing::writePngDeclaringSize(path.string(), c.width, c.height);
+    const std::uint64_t before = peakRssBytes();
+    auto r = readPng(path.string(), c.kind);
+    const std::uint64_t grown = peakRssBytes() - before;
+    ASSERT_FALSE(r.ok()) << size;
+    EXPECT_EQ(r.error().message, path.string() + ": the PNG declares " + size + " pixels; " + c.bound);
+    EXPECT_LT(grown, std::uint64_t{16} << 20) << size;
+  }
+}
+
+// At the bound the size is accepted, and it is the missing pixel data that is refused.
+TEST(PngIo, SizeAtTheBoundIsReadOn) {
+  const fs::path path = outputDir() / "declares-4096x4096.png";
+  testing::writePngDeclaringSize(path.string(), 4096, 4096);
+  auto r = readPng(path.string());
+  ASSERT_FALSE(r.ok());
+  EXPECT_EQ(r.error().message.find("the PNG declares"), std::string::npos) << r.error().message;
+  EXPECT_EQ(r.error().message.rfind(path.string() + ": ", 0), 0u) << r.error().message;
+}
 
 // A PNG in any layout, written by libpng's encoder (not ours): `samples` holds each row's
 // samples, one byte each (bit depth 8), two big-endian bytes (16), or packed (1, 2, 4).

@@ -58,7 +58,10 @@ TEST(City, EachBrokenFieldIsNamed) {
   };
   const std::pair<std::string, std::string> cases[] = {
       {R"({"format": "gltf", "version": 1, "buildings": []})", "not a nut city manifest"},
+      {R"({"format": 1, "version": 1, "buildings": []})", "not a nut city manifest"},
       {manifest("2", good), "unsupported version (this reader knows version 1)"},
+      {manifest("4294967297", good), "unsupported version"},  // 2^32 + 1, which an int cast makes 1
+      {R"({"format": "nut-city", "version": 1, "name": ["a"], "buildings": []})", "\"name\" must be a string"},
       {R"({"format": "nut-city", "version": 1, "buildings": {}})", "\"buildings\" must be an array"},
       {R"({"format": "nut-city", "version": 1, "buildings": [7]})", "building 0: not an object"},
       {manifest("1", R"("hni": "a.png", "position_m": [1, 2, 3])"), "building 0: \"name\" must be a string"},

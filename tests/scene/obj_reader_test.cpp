@@ -9,8 +9,11 @@
 #include <string>
 #include <vector>
 
+#include <sys/resource.h>
+
 #include <glm/geometric.hpp>
 
+#include <nut/png_io.hpp>
 #include <scene/obj.hpp>
 
 #include "test_files.hpp"
@@ -176,6 +179,58 @@ TEST(ObjReader, FaceIndexOutOfRangeIsAnError) {
   ASSERT_FALSE(mesh.ok());
   EXPECT_NE(mesh.error().message.find("range.obj:4: face refers to vertex 7, but only 3 vertices precede it"), std::string::npos)
       << mesh.error().message;
+}
+
+// Text in memory reads as the file would: MTL files are asked for by their path beside the OBJ.
+TEST(ObjReader, ReadsTextInMemoryAskingForItsMtlFiles) {
+  std::vector<std::string> asked;
+  const MtlReader readMtl = [&](const std::string& path) -> Result<std::string> {
+    asked.push_back(path);
+    if (path == "city/red.mtl") return std::string("newmtl red\nKd 1 0 0\n");
+    return Error{path + ": no such file"};
+  };
+  const std::string obj = "mtllib red.mtl blue.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl red\nf 1 2 3\n";
+  auto contents = readObjText(obj, "city/x.obj", readMtl);
+  ASSERT_TRUE(contents.ok()) << contents.error().message;
+  EXPECT_EQ(asked, (std::vector<std::string>{"city/red.mtl", "city/blue.mtl"}));
+  ASSERT_EQ(contents->objects.size(), 1u);
+  const TriangleMesh& mesh = contents->objects[0];
+  EXPECT_EQ(mesh.name, "x");
+  ASSERT_EQ(mesh.triangleMaterial.size(), 1u);
+  EXPECT_EQ(mesh.materials.at(mesh.triangleMaterial[0]).r, 255);
+  ASSERT_EQ(contents->warnings.size(), 1u);
+  EXPECT_EQ(contents->warnings[0], "city/blue.mtl: no such file; its materials use the default grey");
+}
+
+// Peak resident memory of this process so far, in bytes (Linux reports ru_maxrss in KiB).
+std::uint64_t peakRssBytes() {
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
+  return static_cast<std::uint64_t>(usage.ru_maxrss) * 1024;
+}
+
+// Each object gets its own compact vertex list, in memory linear in the file: 50,000 vertices and
+// 5,000 objects of one triangle each (a 0.5 MB file) stay under 64 MiB of growth in peak resident
+// memory, where a file-sized vertex map per object would take 5,000 x 50,000 x 4 B = 1 GB.
+TEST(ObjReader, ManyObjectsOverManyVerticesStayLinear) {
+  constexpr int kVertices = 50000, kObjects = 5000;
+  std::string obj;
+  for (int v = 0; v < kVertices; ++v) obj += "v " + std::to_string(v) + " 0 " + std::to_string(v % 7) + "\n";
+  for (int o = 0; o < kObjects; ++o)
+    obj += "o part" + std::to_string(o) + "\nf " + std::to_string(o + 1) + " " + std::to_string(o + 2) + " " +
+           std::to_string(kVertices - o) + "\n";
+  const std::uint64_t before = peakRssBytes();
+  auto contents = readObjText(obj, "many.obj", readTextFile);
+  const std::uint64_t grown = peakRssBytes() - before;
+  ASSERT_TRUE(contents.ok()) << contents.error().message;
+  ASSERT_EQ(contents->objects.size(), static_cast<std::size_t>(kObjects));
+  const TriangleMesh& last = contents->objects.back();
+  EXPECT_EQ(last.name, "part" + std::to_string(kObjects - 1));
+  ASSERT_EQ(last.positions.size(), 3u);
+  EXPECT_EQ(last.positions[0], glm::dvec3(kObjects - 1, 0, (kObjects - 1) % 7));
+  EXPECT_EQ(last.positions[2], glm::dvec3(kVertices - kObjects, 0, (kVertices - kObjects) % 7));
+  EXPECT_EQ(last.triangles[0], (std::array<std::uint32_t, 3>{0, 1, 2}));
+  EXPECT_LT(grown, std::uint64_t{64} << 20);
 }
 
 }  // namespace

@@ -31,6 +31,10 @@ struct Camera {
   double nearM = 0.1, farM = 1000.0;
 };
 
+// The largest image side a renderer draws (`nut render --size`), and so the largest side of a
+// PNG read as a render rather than an HNI (png_io.hpp): 16384 x 16384 is 1 GiB of RGBA8.
+inline constexpr int kMaxRenderSize = 16384;
+
 // The direction the default camera looks from: in front (+z), to the right (+x) and above (+y),
 // the classic three-quarter view of a facade.
 inline constexpr glm::dvec3 kDefaultViewFrom{0.55, 0.45, 1.0};

@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include <nut/camera.hpp>
 #include <nut/error.hpp>
 #include <nut/image.hpp>
 #include <nut/png_encode.hpp>
@@ -40,8 +41,17 @@ Result<std::string> readTextFile(const std::string& path);
 // Writes a text file (JSON reports) with the same temporary-file-and-rename rule.
 Status writeTextFile(const std::string& path, const std::string& text);
 
+// What a PNG is read as, which bounds the size its IHDR may declare. The bound is checked on the
+// IHDR, before any pixel buffer is allocated, so a file of a few bytes cannot make the reader
+// allocate more than the bound allows:
+//   Hni     at most format::kMaxImageSize per side (4096 x 4096, docs/FORMAT.md, 64 MiB of pixels);
+//           the smallest HNI (6 x 1) is validate's rule, not the reader's.
+//   Render  at most kMaxRenderSize per side (16384 x 16384, camera.hpp, 1 GiB): renders and diffs.
+enum class PngKind { Hni, Render };
+
 // Reads a PNG as RGBA8 (grey and RGB files gain channels; 16-bit files are refused). Errors name
-// the file.
-Result<PngFile> readPng(const std::string& path);
+// the file; a size over the kind's bound: "<file>: the PNG declares WxH pixels; an HNI has at most
+// 4096x4096" (for a render: "a render has at most 16384x16384").
+Result<PngFile> readPng(const std::string& path, PngKind kind = PngKind::Hni);
 
 }  // namespace nut

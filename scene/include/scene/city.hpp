@@ -35,6 +35,9 @@ Status writeCityJson(const std::string& path, const CityManifest& city);
 // that stay inside the manifest's folder. Errors name the file and the building.
 Result<CityManifest> readCityJson(const std::string& path);
 
+// readCityJson on a manifest already in memory; `path` names it in errors.
+Result<CityManifest> parseCityJson(const std::string& text, const std::string& path);
+
 // A file name for an object name: letters, digits, '-', '_' and '.' kept, anything else '_',
 // never empty, never starting with '.'.
 std::string safeFileStem(const std::string& name);

@@ -13,6 +13,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -48,6 +49,15 @@ struct ObjContents {
 // Errors, naming file and line: unreadable file, a coordinate that is not a finite number, a face
 // index out of range or zero, more than nut::kMaxMeshMaterials materials, no faces at all.
 Result<ObjContents> readObj(const std::string& path, const ObjReadOptions& options = {});
+
+// Gives the text of an MTL file, named by its path (a `mtllib` name joined to the OBJ's folder),
+// or an error, which the reader keeps as a warning.
+using MtlReader = std::function<Result<std::string>(const std::string& path)>;
+
+// readObj on an OBJ already in memory: `path` names it in messages and gives the folder of its MTL
+// files, whose text `readMtl` supplies (readObj: the file's text, and readTextFile).
+Result<ObjContents> readObjText(const std::string& text, const std::string& path, const MtlReader& readMtl,
+                                const ObjReadOptions& options = {});
 
 // The whole file as one mesh (readObj with oneMesh), its warnings appended to `warnings`.
 Result<TriangleMesh> readObjMesh(const std::string& path, std::vector<std::string>& warnings);
