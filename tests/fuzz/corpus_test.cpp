@@ -69,6 +69,13 @@ TEST(FuzzCorpus, ObjSeedsAndMutationsRunClean) {
   runMutations(objInput, handMade, 0, 100);
 }
 
+TEST(FuzzCorpus, GrammarSeedsAndMutationsRunClean) {
+  const std::vector<SeedInput> seeds = grammarSeeds();
+  EXPECT_GE(seeds.size(), 4u);  // the samples are found
+  runAll(grammarInput, seeds);
+  runMutations(grammarInput, seeds, 0, 100);
+}
+
 TEST(FuzzCorpus, CitySeedsAndMutationsRunClean) {
   runAll(cityInput, citySeeds());
   const std::vector<SeedInput> handMade = committed("city_fuzz");

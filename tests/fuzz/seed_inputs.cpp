@@ -78,6 +78,13 @@ std::vector<SeedInput> citySeeds() {
   return seeds;
 }
 
+std::vector<SeedInput> grammarSeeds() {
+  std::vector<SeedInput> seeds;
+  for (const fs::path& path : filesIn(kSourceDir / "samples/grammars"))
+    if (path.extension() == ".grammar") seeds.push_back({path.stem().string(), bytesOf(fileText(path))});
+  return seeds;
+}
+
 std::vector<SeedInput> committedInputs(const std::string& folder) {
   std::vector<SeedInput> inputs;
   for (const fs::path& path : filesIn(kSourceDir / "tests/fuzz" / folder))

@@ -27,6 +27,9 @@ std::vector<SeedInput> objSeeds();
 // city_fuzz: a manifest as the writer (scene::cityJson) makes it, with and without complements.
 std::vector<SeedInput> citySeeds();
 
+// grammar_fuzz: every grammar of samples/grammars/.
+std::vector<SeedInput> grammarSeeds();
+
 // The files of a folder under tests/fuzz/ (e.g. "corpus/obj_fuzz"), README.md aside; none when
 // the folder does not exist.
 std::vector<SeedInput> committedInputs(const std::string& folder);

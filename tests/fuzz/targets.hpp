@@ -16,5 +16,7 @@ int objInput(const std::uint8_t* data, std::size_t size);
 int cityInput(const std::uint8_t* data, std::size_t size);
 // Bytes as an HNI (frame.hpp) through validate and, when valid, the CPU ray caster (render_fuzz.cpp).
 int renderInput(const std::uint8_t* data, std::size_t size);
+// Bytes as a grammar through the grammar parser and its checks (grammar_fuzz.cpp).
+int grammarInput(const std::uint8_t* data, std::size_t size);
 
 }  // namespace nut::fuzz
