@@ -6,8 +6,10 @@
 #   make fuzz   run one libFuzzer target longer: make fuzz TARGET=obj_fuzz FUZZ_SECONDS=600
 #               (targets: hni_fuzz, the default, obj_fuzz, city_fuzz, render_fuzz, grammar_fuzz; docs/INPUT.md)
 #   make core-check   build the core alone (optional modules off) and check what it links
+#   make test-sanitize   build the whole suite with AddressSanitizer + UBSan and run it
 BUILD ?= build
 CORE_BUILD ?= build-core
+SANITIZE_BUILD ?= build-asan
 FUZZ_BUILD ?= build-fuzz
 JOBS ?= $(shell nproc)
 FUZZ_SECONDS ?= 600
@@ -31,7 +33,7 @@ fuzz-smoke-run = echo "fuzz: $(1) for $(2) s" >&2; $(call fuzz-run,$(1),$(2)) 2>
 fuzz-smoke-seconds = $(if $(filter hni_fuzz,$(1)),$(FUZZ_SMOKE_SECONDS),$(FUZZ_SMOKE_OTHER_SECONDS))
 OUT ?= out
 
-.PHONY: deps build test demo bench fuzz fuzz-build fuzz-smoke core-check clean
+.PHONY: deps build test demo bench fuzz fuzz-build fuzz-smoke core-check test-sanitize clean
 
 deps:
 	@./scripts/install-deps.sh
@@ -47,6 +49,15 @@ test: build
 
 core-check: deps
 	@./scripts/check-core-build.sh $(CORE_BUILD)
+
+# Any sanitizer report fails its test: UBSan does not recover, ASan stops at the first error.
+test-sanitize: deps
+	@cmake -S . -B $(SANITIZE_BUILD) -DCMAKE_BUILD_TYPE=RelWithDebInfo -DNUT_BUILD_BENCH=OFF \
+	  -DCMAKE_CXX_FLAGS="-fsanitize=address,undefined -fno-sanitize-recover=undefined -fno-omit-frame-pointer" \
+	  -DCMAKE_EXE_LINKER_FLAGS="-fsanitize=address,undefined" > /dev/null
+	@cmake --build $(SANITIZE_BUILD) -j $(JOBS)
+	@UBSAN_OPTIONS=print_stacktrace=1 LSAN_OPTIONS=suppressions=$(CURDIR)/tests/lsan.supp \
+	  ctest --test-dir $(SANITIZE_BUILD) --output-on-failure -j $(JOBS)
 
 demo: build
 	@./scripts/demo.sh $(BUILD) $(OUT)
@@ -70,4 +81,4 @@ fuzz: fuzz-build
 	@$(call fuzz-run,$(TARGET),$(FUZZ_SECONDS))
 
 clean:
-	rm -rf $(BUILD) $(CORE_BUILD) $(FUZZ_BUILD) $(OUT)
+	rm -rf $(BUILD) $(CORE_BUILD) $(SANITIZE_BUILD) $(FUZZ_BUILD) $(OUT)

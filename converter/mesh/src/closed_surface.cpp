@@ -28,10 +28,15 @@ constexpr double kSamePlaceM = 1e-3;
 
 using Cell = std::array<std::int64_t, 3>;
 
-Cell cellOf(const dvec3& p) {
-  return {static_cast<std::int64_t>(std::floor(p.x / kSamePlaceM)), static_cast<std::int64_t>(std::floor(p.y / kSamePlaceM)),
-          static_cast<std::int64_t>(std::floor(p.z / kSamePlaceM))};
+// A coordinate's cell index, clamped to +-2^62 so that the index and its neighbours (+-1) fit an
+// int64: coordinates beyond 4.6e15 m, which no building has (such a mesh is refused for its size
+// later), share the outermost cell, where vertices are still compared by their distance.
+std::int64_t cellIndex(double x) {
+  constexpr double kLimit = 4611686018427387904.0;  // 2^62
+  return static_cast<std::int64_t>(std::clamp(std::floor(x / kSamePlaceM), -kLimit, kLimit));
 }
+
+Cell cellOf(const dvec3& p) { return {cellIndex(p.x), cellIndex(p.y), cellIndex(p.z)}; }
 
 // The place of each vertex in `used`: vertices within kSamePlaceM of each other (transitively)
 // are one place, named by one of them. Two such vertices lie in neighbouring cells of a
