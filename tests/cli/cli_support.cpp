@@ -8,6 +8,8 @@
 
 #include <gtest/gtest.h>
 
+#include "test_files.hpp"
+
 namespace nut::testing {
 
 CliRun runNut(const std::string& args, const std::string& group) {
@@ -22,9 +24,7 @@ CliRun runNut(const std::string& args, const std::string& group) {
 }
 
 std::string outputPath(const std::string& group, const std::string& name) {
-  const std::filesystem::path dir = std::filesystem::path(NUT_TEST_OUTPUT_DIR) / group;
-  std::filesystem::create_directories(dir);
-  return (dir / name).string();
+  return (nut::testing::testOutputDir(group) / name).string();
 }
 
 std::string fileText(const std::string& path) {

@@ -5,13 +5,11 @@
 
 #include <gtest/gtest.h>
 
+#include "test_files.hpp"
+
 namespace nut::converter::testing {
 
-std::string outputDir(const std::string& group) {
-  const std::filesystem::path dir = std::filesystem::path(NUT_TEST_OUTPUT_DIR) / group;
-  std::filesystem::create_directories(dir);
-  return dir.string();
-}
+std::string outputDir(const std::string& group) { return nut::testing::testOutputDir(group).string(); }
 
 Conversion convertOrFail(const TriangleMesh& mesh, const ConvertOptions& options) {
   auto c = convertMesh(mesh, options);

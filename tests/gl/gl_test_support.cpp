@@ -10,13 +10,11 @@
 #include <nut/image_compare.hpp>
 #include <nut/png_io.hpp>
 
+#include "../test_files.hpp"
+
 namespace nut::gltest {
 
-std::filesystem::path outputDir(const std::string& suite) {
-  const std::filesystem::path dir = std::filesystem::path(NUT_TEST_OUTPUT_DIR) / suite;
-  std::filesystem::create_directories(dir);
-  return dir;
-}
+std::filesystem::path outputDir(const std::string& suite) { return testing::testOutputDir(suite); }
 
 std::unique_ptr<viewer::OffscreenRenderer> openRenderer(viewer::Backend backend) {
   viewer::OffscreenOptions options;
