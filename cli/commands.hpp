@@ -38,5 +38,6 @@ void addExportMeshCommand(CLI::App& app, int& exitCode);
 void addRenderMeshCommand(CLI::App& app, int& exitCode);
 void addCompareCommand(CLI::App& app, int& exitCode);
 void addConvertCommand(CLI::App& app, int& exitCode);
+void addGrammarCommand(CLI::App& app, int& exitCode);
 
 }  // namespace nut::cli

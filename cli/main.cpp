@@ -69,6 +69,7 @@ int main(int argc, char** argv) {
   nut::cli::addRenderMeshCommand(app, exitCode);
 #endif
   nut::cli::addCompareCommand(app, exitCode);
+  nut::cli::addGrammarCommand(app, exitCode);
 #if NUT_HAVE_CONVERTER
   nut::cli::addConvertCommand(app, exitCode);
 #endif

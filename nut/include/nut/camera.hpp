@@ -18,6 +18,7 @@ struct WorldBox {
   glm::dvec3 min{0.0}, max{0.0};
   glm::dvec3 centre() const { return 0.5 * (min + max); }
   glm::dvec3 size() const { return max - min; }
+  friend bool operator==(const WorldBox&, const WorldBox&) = default;
 };
 
 // Pinhole camera: eye, target, up, vertical field of view; pixel centres are sampled.
