@@ -142,8 +142,16 @@ class Deriver {
     auto root = finish(*start, std::move(top), glm::dvec3(0.0), 0, std::nullopt);
     if (!root) return root.error();
     if (!*root) return Error{at(*start) + "the grammar derives nothing from the start rule '" + start->name + "'"};
+    // The root is a node shown whole: a box, a tiled node or a clipped one gets a node around it.
     Piece piece = **root;
-    if (piece.kind == Piece::Kind::Box) piece = intern({piece.region.size(), {{Piece::Kind::Box, {glm::dvec3(0.0), piece.region.size()}, piece.material}}}, piece.region, piece.region.min, 0);
+    const bool whole = piece.kind == Piece::Kind::Node && piece.cube == 0 && piece.wrap == std::array<bool, 3>{} &&
+                       piece.region == WorldBox{piece.offsetM, piece.offsetM + d_.nodes[piece.node].sizeM};
+    if (!whole) {
+      const WorldBox region = piece.region;
+      piece.region = shifted(region, -region.min);
+      piece.offsetM -= region.min;
+      piece = intern({region.size(), {piece}}, region, region.min, 0);
+    }
     d_.root = piece;
     d_.shapes = shapes_;
     return std::move(d_);

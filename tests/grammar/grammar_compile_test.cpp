@@ -1,0 +1,259 @@
+// The grammar producer (grammar/derive.hpp, grammar/compile.hpp): every sample compiles to a
+// valid HNI; rays cast straight at the compiled facades find the windows and floors the grammar's
+// arithmetic says; alike results are one block; the seed decides, RandStack groups as the facade
+// paper's Figure 6 says; and every derivation error names the rule.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <set>
+#include <string>
+#include <vector>
+
+#include <grammar/compile.hpp>
+#include <nut/hni.hpp>
+#include <nut/png_encode.hpp>
+#include <nut/raycast.hpp>
+
+namespace nut::grammar {
+namespace {
+
+std::string samplePath(const std::string& name) {
+  return std::string(NUT_SOURCE_DIR) + "/samples/grammars/" + name + ".grammar";
+}
+
+std::vector<std::string> sampleNames() {
+  std::vector<std::string> names;
+  for (const auto& e : std::filesystem::directory_iterator(std::string(NUT_SOURCE_DIR) + "/samples/grammars"))
+    if (e.path().extension() == ".grammar") names.push_back(e.path().stem().string());
+  std::sort(names.begin(), names.end());
+  return names;
+}
+
+CompiledGrammar compiled(const std::string& text, const DeriveOptions& options = {}) {
+  auto g = parseGrammar(text, "g");
+  EXPECT_TRUE(g) << g.error().message;
+  auto c = compileGrammar(*g, options);
+  EXPECT_TRUE(c) << c.error().message;
+  return c ? std::move(*c) : CompiledGrammar{};
+}
+
+std::string compileError(const std::string& text, const DeriveOptions& options = {}) {
+  auto g = parseGrammar(text, "g");
+  EXPECT_TRUE(g) << g.error().message;
+  if (!g) return {};
+  auto c = compileGrammar(*g, options);
+  EXPECT_FALSE(c);
+  return c ? std::string() : c.error().message;
+}
+
+// The colour a ray cast straight at the facade (from +z, along -z) finds at (x, y).
+std::array<std::uint8_t, 3> colourAt(const CompiledGrammar& c, double x, double y) {
+  const HniRayCaster caster(c.image, c.originM);
+  const RayResult r = caster.trace({x, y, 50.0}, {0, 0, -1}, 1e-4, RayCastOptions{Lookup::Exact});
+  EXPECT_TRUE(r.hit) << "at " << x << ", " << y;
+  return r.colour;
+}
+
+// Runs of one colour along y = const, from x0 to x1 in steps: the colours met, in order.
+std::vector<std::array<std::uint8_t, 3>> runsAlong(const CompiledGrammar& c, double y, double x0, double x1) {
+  const HniRayCaster caster(c.image, c.originM);
+  std::vector<std::array<std::uint8_t, 3>> runs;
+  for (double x = x0; x < x1; x += 0.01) {
+    const RayResult r = caster.trace({x, y, 50.0}, {0, 0, -1}, 1e-4, RayCastOptions{Lookup::Exact});
+    if (runs.empty() || runs.back() != r.colour) runs.push_back(r.colour);
+  }
+  return runs;
+}
+
+TEST(GrammarCompile, EverySampleCompilesValidatesAndDecodes) {
+  const auto names = sampleNames();
+  ASSERT_GE(names.size(), 4u);
+  for (const std::string& name : names) {
+    SCOPED_TRACE(name);
+    auto g = readGrammar(samplePath(name));
+    ASSERT_TRUE(g) << g.error().message;
+    auto c = compileGrammar(*g);
+    ASSERT_TRUE(c) << c.error().message;
+    ASSERT_TRUE(validate(c->image)) << validate(c->image).error().message;
+    auto back = decode(c->image);
+    ASSERT_TRUE(back);
+    EXPECT_EQ(back->blocks.size(), c->hierarchy.blocks.size());
+    EXPECT_GT(c->derivation.shapes, static_cast<long long>(c->derivation.nodes.size()));  // sharing happened
+  }
+}
+
+// Figure 12 of the facade paper on 15 x 12 m: a 3 m ground floor of 2.5 m tiles (6 windows), a
+// 2.5 m top floor of 3 m tiles (5), and between them 6.5 m of 2.8 m floors (2) of 2 m tiles
+// (15 / 2 = 7.5, rounded: 8). Each window is 1 m wide and 1.3 m high, centred in its tile.
+TEST(GrammarCompile, FigureTwelveHasTheWindowsAndFloorsItsArithmeticSays) {
+  auto g = readGrammar(samplePath("krecklau_figure12"));
+  ASSERT_TRUE(g) << g.error().message;
+  auto c = compileGrammar(*g);
+  ASSERT_TRUE(c) << c.error().message;
+  const double floorCentres[] = {1.5, 3.0 + 6.5 / 4, 3.0 + 3 * 6.5 / 4, 12.0 - 1.25};
+  const int windows[] = {6, 8, 8, 5};
+  const auto wall = colourAt(*c, 0.1, 0.1);
+  for (int f = 0; f < 4; ++f) {
+    SCOPED_TRACE(::testing::Message() << "floor " << f);
+    const auto runs = runsAlong(*c, floorCentres[f], 0.005, 15.0);
+    ASSERT_EQ(runs.size(), 2u * windows[f] + 1) << "wall, window, wall, ... along the floor";
+    for (std::size_t i = 0; i < runs.size(); i += 2) EXPECT_EQ(runs[i], wall);
+    // RandStack at each floor and RandUni(1, ...) per window: one window style per floor.
+    for (std::size_t i = 3; i < runs.size(); i += 2) EXPECT_EQ(runs[i], runs[1]);
+    EXPECT_GT(runs[1][2], runs[1][0]) << "windows are the blue-grey tone";
+  }
+  // Between floors, above the ground floor's windows, only wall.
+  EXPECT_EQ(runsAlong(*c, 2.9, 0.005, 15.0).size(), 1u);
+}
+
+// Three window styles chosen per tile: the tiles that came out alike are one block each, so a
+// facade of 40 windows costs at most three tile blocks, not forty.
+TEST(GrammarCompile, AlikeResultsAreOneBlock) {
+  const std::string text = R"(
+    @size 20, 8
+    F -> SplitY(Rel, 1, Floor, Rel, 1, Floor)
+    Floor -> RepeatX(1, Tile)
+    Tile -> SplitX(Rel, 1, W, Abs, 0.5, Pick, Rel, 1, W)
+    Pick -> RandUni(0, A, B, C)
+    W -> Mat(Color, 0, 0.8, 0.8, 0.7, 1)
+    A -> Mat(Color, 0, 0.1, 0.1, 0.5, 1)
+    B -> Mat(Color, 0, 0.1, 0.5, 0.1, 1)
+    C -> Mat(Color, 0, 0.5, 0.1, 0.1, 1)
+  )";
+  const CompiledGrammar c = compiled(text, {.seed = 3});
+  // 2 floors x 20 tiles; every tile is a node of three cells, so distinct tiles = distinct styles.
+  std::set<std::uint16_t> styles;
+  const HniRayCaster caster(c.image, c.originM);
+  std::set<std::array<std::uint8_t, 3>> seen;
+  for (int f = 0; f < 2; ++f)
+    for (int t = 0; t < 20; ++t) seen.insert(colourAt(c, t + 0.5, 2 + 4 * f));
+  EXPECT_EQ(seen.size(), 3u) << "all three styles show up among 40 windows";
+  int tileNodes = 0;
+  for (const Node& n : c.derivation.nodes)
+    if (n.pieces.size() == 3 && std::abs(n.sizeM.x - 1.0) < 1e-9) ++tileNodes;
+  EXPECT_EQ(tileNodes, 3);
+  EXPECT_LE(c.hierarchy.blocks.size(), 3u + 3u);  // the tiles, the two floors (alike or not) and the facade
+}
+
+// A repeat whose tiles are alike is one wrapped redirection: the facade of 30 identical tiles is
+// two blocks, whatever the count.
+TEST(GrammarCompile, AlikeTilesAreOneWrappedRedirection) {
+  const std::string text = R"(
+    @size 30, 3
+    F -> RepeatX(1, Tile)
+    Tile -> SplitX(Rel, 1, W, Abs, 0.5, G, Rel, 1, W)
+    W -> Mat(Color, 0, 0.8, 0.8, 0.7, 1)
+    G -> Mat(Color, 0, 0.1, 0.1, 0.5, 1)
+  )";
+  const CompiledGrammar c = compiled(text);
+  ASSERT_EQ(c.hierarchy.blocks.size(), 2u);
+  const Block& root = c.hierarchy.blocks[c.hierarchy.root];
+  ASSERT_EQ(root.redirections.size(), 1u);
+  EXPECT_TRUE(root.redirections[0].wrap[0]);
+  EXPECT_EQ(runsAlong(c, 1.5, 0.005, 30.0).size(), 61u);  // 30 windows between 31 walls
+}
+
+TEST(GrammarCompile, TheSameSeedGivesTheSameBytesAndOtherSeedsOtherFacades) {
+  auto g = readGrammar(samplePath("krecklau_figure12"));
+  ASSERT_TRUE(g);
+  const auto bytes = [&](std::uint64_t seed) {
+    auto c = compileGrammar(*g, {.seed = seed});
+    EXPECT_TRUE(c);
+    return c ? encodePng(c->image, nullptr, PngEffort::Quick) : std::string();
+  };
+  const std::string first = bytes(1);
+  EXPECT_EQ(bytes(1), first);
+  std::set<std::string> others;
+  for (std::uint64_t seed = 2; seed < 8; ++seed) others.insert(bytes(seed));
+  others.insert(first);
+  EXPECT_GE(others.size(), 4u) << "seven seeds give at least four different facades";
+}
+
+// The facade paper's Figure 6: Rand's first parameter picks the seed. With RandStack per floor and
+// level 1 every window of a floor is alike; with level 0 each window draws its own.
+TEST(GrammarCompile, RandStackGroupsAsFigureSixDescribes) {
+  const auto withLevel = [](int level) {
+    std::string text = R"(
+    @size 12, 12
+    F -> RepeatY(3, Floor)
+    Floor -> RandStack(Row)
+    Row -> RepeatX(1.5, Tile)
+    Tile -> SplitX(Rel, 1, W, Abs, 0.8, Pick, Rel, 1, W)
+    Pick -> RandUni()";
+    text += std::to_string(level);
+    text += R"(, A, B, C, D)
+    W -> Mat(Color, 0, 0.8, 0.8, 0.7, 1)
+    A -> Mat(Color, 0, 0.1, 0.1, 0.5, 1)
+    B -> Mat(Color, 0, 0.1, 0.5, 0.1, 1)
+    C -> Mat(Color, 0, 0.5, 0.1, 0.1, 1)
+    D -> Mat(Color, 0, 0.5, 0.5, 0.1, 1)
+  )";
+    return text;
+  };
+  const auto floorStyles = [](const CompiledGrammar& c) {
+    std::vector<std::set<std::array<std::uint8_t, 3>>> floors(4);
+    for (int f = 0; f < 4; ++f)
+      for (int t = 0; t < 8; ++t) floors[f].insert(colourAt(c, 1.5 * t + 0.75, 3.0 * f + 1.5));
+    return floors;
+  };
+  const auto byFloor = floorStyles(compiled(withLevel(1), {.seed = 11}));
+  std::set<std::array<std::uint8_t, 3>> acrossFloors;
+  for (const auto& styles : byFloor) {
+    EXPECT_EQ(styles.size(), 1u) << "one style per floor";
+    acrossFloors.insert(*styles.begin());
+  }
+  EXPECT_GE(acrossFloors.size(), 2u) << "floors draw apart";
+  const auto perWindow = floorStyles(compiled(withLevel(0), {.seed = 11}));
+  for (const auto& styles : perWindow) EXPECT_GE(styles.size(), 2u) << "each window draws its own";
+}
+
+// A recess: a ray at its centre goes the recess's depth further than one at the wall.
+TEST(GrammarCompile, AnIntrusionIsARecessOfItsDepth) {
+  const std::string text = R"(
+    @size 3, 3
+    F -> SplitX(Rel, 1, W, Abs, 1, Col, Rel, 1, W)
+    Col -> SplitY(Rel, 1, W, Abs, 1, Hole, Rel, 1, W)
+    Hole -> Intrusion(0.2, Side, Side, Side, Side, Back)
+    Side -> Mat(Color, 0, 0.5, 0.5, 0.5, 1)
+    Back -> Mat(Color, 0, 0.1, 0.1, 0.4, 1)
+    W -> Mat(Color, 0, 0.8, 0.8, 0.7, 1)
+  )";
+  const CompiledGrammar c = compiled(text);
+  const HniRayCaster caster(c.image, c.originM);
+  const RayCastOptions exact{Lookup::Exact};
+  const RayResult wall = caster.trace({0.5, 0.5, 10}, {0, 0, -1}, 1e-4, exact);
+  const RayResult back = caster.trace({1.5, 1.5, 10}, {0, 0, -1}, 1e-4, exact);
+  const RayResult side = caster.trace({1.02, 1.5, 10}, {0, 0, -1}, 1e-4, exact);  // on the left side's edge
+  ASSERT_TRUE(wall.hit && back.hit && side.hit);
+  EXPECT_NEAR(wall.distanceM, 10.0, 1e-3);
+  EXPECT_NEAR(back.distanceM, 10.2, 1e-3);
+  EXPECT_NEAR(side.distanceM, 10.0, 1e-3);
+  EXPECT_NE(back.colour, wall.colour);
+}
+
+TEST(GrammarCompile, DerivationErrorsNameTheRule) {
+  const struct {
+    std::string text, message;
+    DeriveOptions options;
+  } cases[] = {
+      {"@size 4, 3\nA -> SplitX(Abs, 3, B, Abs, 2, B)\nB -> Mat(Color, 0, 1, 0, 0, 1)",
+       "g:2:1: rule 'A': parts of 5 m do not fit a scope of 4 m along x", {}},
+      {"@size 4, 3\nA -> Intrusion(0.5, B, B, B, B, B)\nB -> Mat(Color, 0, 1, 0, 0, 1)",
+       "g:2:1: rule 'A': a recess of 0.5 m needs a wall thicker than that; the wall is 0.3 m (--wall)", {}},
+      {"@size 4, 3\nA -> ComponentSplit {B, B, B}\nB -> Generate {Quad}",
+       "g:2:1: rule 'A': ComponentSplit needs a mass (a box scope); this scope is a facade", {}},
+      {"@size 4, 3, 4\nA -> SubdivideX {1r : B, 1r : T}\nT -> Translate {(-1, 0, 0) : B}\nB -> Generate {Box}",
+       "g:2:1: rule 'A': two of its shapes overlap", {}},
+      {"@size 400, 3\nA -> RepeatX {0.01 : B}\nB -> Generate {Quad}", "the derivation exceeds 1000 shapes", {.maxShapes = 1000}},
+      {"A -> Generate {Quad}", "g: no start scope: give --size W,H (a facade) or W,H,D (a mass), or @size in the file", {}},
+  };
+  for (const auto& c : cases) {
+    SCOPED_TRACE(c.text);
+    const std::string message = compileError(c.text, c.options);
+    EXPECT_NE(message.find(c.message), std::string::npos) << message;
+    EXPECT_EQ(message.find('\n'), std::string::npos) << "one line";
+  }
+}
+
+}  // namespace
+}  // namespace nut::grammar
