@@ -41,6 +41,12 @@ int cubeIndexOf(const IMat3& m) {
     if (cubeRotationMatrix(i) == m) return i;
   return -1;
 }
+IMat3 transposed(const IMat3& m) {  // a rotation's inverse; glm's transpose takes floats only
+  IMat3 t;
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) t[i][j] = m[j][i];
+  return t;
+}
 IMat3 axesMatrix(const glm::ivec3& x, const glm::ivec3& y, const glm::ivec3& z) { return IMat3(x, y, z); }
 
 std::uint64_t mix(std::uint64_t h, std::uint64_t v) {
@@ -84,6 +90,8 @@ struct Scope {
   double thickness = 0;         // quad: the slab's depth
   glm::dvec3 seedPoint{0.0};    // where random values are sampled (the facade paper's S_lb)
   std::uint64_t salt = 0;       // layers and faces sample apart, as the paper's i * s translation
+  glm::ivec3 up{0, 1, 0};       // the world's up in this frame
+  int capAxis = 1;              // box: the axis the mass grew along (ComponentSplit's top is at its end)
 
   WorldBox solid() const {
     if (!quad) return {origin, origin + size};
@@ -190,14 +198,17 @@ class Deriver {
     }
   }
 
-  // Places the rule `name` on a face whose frame is turned by `axes` and has its origin at
-  // `faceOrigin` in the current frame; what shows is clipped to `clip` (face frame).
-  Status placeFace(const Rule& parent, const std::string& name, const Position& where, const Scope& face, const Context& c,
-                   const IMat3& axes, const glm::dvec3& faceOrigin, const WorldBox& clip, std::vector<Piece>& out) {
+  // Places the rule `name` on a face (or a turned mass) whose frame is turned by `axes` and has
+  // its origin at `faceOrigin` in the frame of scope s; what shows is clipped to `clip` (face frame).
+  Status placeFace(const Rule& parent, const std::string& name, const Position& where, const Scope& face, const Scope& s,
+                   const Context& c, const IMat3& axes, const glm::dvec3& faceOrigin, const WorldBox& clip,
+                   std::vector<Piece>& out) {
     std::vector<Piece> pieces;
     Context inner;
     inner.stack = c.stack;  // faces keep the seeds but start without layers
-    if (Status st = place(name, where, face, inner, pieces); !st) return st;
+    Scope turnedFace = face;
+    turnedFace.up = transposed(axes) * s.up;
+    if (Status st = place(name, where, turnedFace, inner, pieces); !st) return st;
     auto piece = finish(parent, std::move(pieces), faceOrigin, cubeIndexOf(axes), clip);
     if (!piece) return piece.error();
     if (*piece) out.push_back(**piece);
@@ -243,17 +254,14 @@ class Deriver {
       }
       case Op::Discard: return Ok{};
       case Op::ComponentSplit: return componentSplit(r, s, c, out);
-      case Op::Extrude: {
-        if (!s.quad) return Error{at(r) + "Extrude needs a facade (a quad scope); this scope is a mass"};
-        Scope box = s;
-        box.quad = false;
-        box.size.z = r.parts[0].size.low;
-        return place(r.parts[0].rule, r.parts[0].at, box, c, out);
-      }
+      case Op::Extrude: return extrude(r, s, c, out);
       case Op::Translate: return place(r.parts[0].rule, r.parts[0].at, s.moved(r.vector), c, out);
       case Op::Scale: {
+        // CGA's s(): the scope gets this size in metres, about its centre (a facade keeps its slab).
         Scope scaled = s;
-        scaled.size *= r.vector;
+        const glm::dvec3 size = s.quad ? glm::dvec3(r.vector.x, r.vector.y, 0.0) : r.vector;
+        scaled.origin += 0.5 * (s.size - size);
+        scaled.size = size;
         return place(r.parts[0].rule, r.parts[0].at, scaled, c, out);
       }
     }
@@ -448,41 +456,70 @@ class Deriver {
     const WorldBox all{glm::dvec3(-kInf), glm::dvec3(kInf)};
     const WorldBox between{{f, -kInf, -kInf}, {w - f, kInf, kInf}};
     const std::array<const Part*, 5> p{&r.parts[0], &r.parts[1], &r.parts[2], &r.parts[3], &r.parts[4]};
-    Status st = placeFace(r, p[0]->rule, p[0]->at, face(0, v, h, f), c, axesMatrix({0, 0, -1}, {0, 1, 0}, {1, 0, 0}), o + glm::dvec3(f, 0, 0), all, out);
-    if (st) st = placeFace(r, p[1]->rule, p[1]->at, face(1, v, h, f), c, axesMatrix({0, 0, 1}, {0, 1, 0}, {-1, 0, 0}), o + glm::dvec3(w - f, 0, -v), all, out);
-    if (st) st = placeFace(r, p[2]->rule, p[2]->at, face(2, w, v, f), c, axesMatrix({1, 0, 0}, {0, 0, -1}, {0, 1, 0}), o + glm::dvec3(0, f, 0), between, out);
-    if (st) st = placeFace(r, p[3]->rule, p[3]->at, face(3, w, v, f), c, axesMatrix({1, 0, 0}, {0, 0, 1}, {0, -1, 0}), o + glm::dvec3(0, h - f, -v), between, out);
-    if (st) st = placeFace(r, p[4]->rule, p[4]->at, face(4, w, h, s.thickness - v), c, IMat3(1), o + glm::dvec3(0, 0, -v), all, out);
+    Status st = placeFace(r, p[0]->rule, p[0]->at, face(0, v, h, f), s, c, axesMatrix({0, 0, -1}, {0, 1, 0}, {1, 0, 0}), o + glm::dvec3(f, 0, 0), all, out);
+    if (st) st = placeFace(r, p[1]->rule, p[1]->at, face(1, v, h, f), s, c, axesMatrix({0, 0, 1}, {0, 1, 0}, {-1, 0, 0}), o + glm::dvec3(w - f, 0, -v), all, out);
+    if (st) st = placeFace(r, p[2]->rule, p[2]->at, face(2, w, v, f), s, c, axesMatrix({1, 0, 0}, {0, 0, -1}, {0, 1, 0}), o + glm::dvec3(0, f, 0), between, out);
+    if (st) st = placeFace(r, p[3]->rule, p[3]->at, face(3, w, v, f), s, c, axesMatrix({1, 0, 0}, {0, 0, 1}, {0, -1, 0}), o + glm::dvec3(0, h - f, -v), between, out);
+    if (st) st = placeFace(r, p[4]->rule, p[4]->at, face(4, w, h, s.thickness - v), s, c, IMat3(1), o + glm::dvec3(0, 0, -v), all, out);
     return st;
   }
 
-  // The six faces of a mass, each a facade whose slab lies inside the mass (the walls). The front
-  // and back own the vertical corners; the roof and the floor lie between the walls.
+  // The six faces of a mass, each a facade whose slab lies inside the mass (the walls). The top is
+  // the face at the end of the axis the mass grew along (a building's roof, the front of a mass
+  // extruded from a wall), the bottom the one opposite, the sides the other four. Of the sides,
+  // the pair across the axis after the cap axis owns the corners; top and bottom lie between them.
   Status componentSplit(const Rule& r, const Scope& s, const Context& c, std::vector<Piece>& out) {
     if (s.quad) return Error{at(r) + "ComponentSplit needs a mass (a box scope); this scope is a facade"};
-    const double t = o_.wallM, x = s.size.x, y = s.size.y, z = s.size.z;
-    if (!(x > 2 * t && y > 2 * t && z > 2 * t))
-      return Error{at(r) + "a mass of " + metres(x) + " x " + metres(y) + " x " + metres(z) + " has no room for walls of " + metres(t) + " (--wall)"};
-    const glm::dvec3 o = s.origin;
-    const auto face = [&](int i, double fw, double fh) {
-      Scope q;
-      q.size = {fw, fh, 0};
-      q.thickness = t;
-      q.seedPoint = s.seedPoint;
-      q.salt = mix(s.salt, 200 + static_cast<std::uint64_t>(i));
-      return q;
+    const glm::dvec3 n = s.size, o = s.origin;
+    const double t = std::min(o_.wallM, std::min({n.x, n.y, n.z}) / 4);
+    struct Face {
+      int axis, side;
+      IMat3 axes;
+      glm::dvec3 corner;
+      double width, height;
     };
+    // Each face's frame: x along the face, y up the face, z its outward normal.
+    const Face faces[] = {
+        {2, +1, IMat3(1), {0, 0, n.z}, n.x, n.y},
+        {2, -1, axesMatrix({-1, 0, 0}, {0, 1, 0}, {0, 0, -1}), {n.x, 0, 0}, n.x, n.y},
+        {0, +1, axesMatrix({0, 0, -1}, {0, 1, 0}, {1, 0, 0}), {n.x, 0, n.z}, n.z, n.y},
+        {0, -1, axesMatrix({0, 0, 1}, {0, 1, 0}, {-1, 0, 0}), {0, 0, 0}, n.z, n.y},
+        {1, +1, axesMatrix({1, 0, 0}, {0, 0, -1}, {0, 1, 0}), {0, n.y, n.z}, n.x, n.z},
+        {1, -1, axesMatrix({1, 0, 0}, {0, 0, 1}, {0, -1, 0}), {0, 0, 0}, n.x, n.z},
+    };
+    const int cap = s.capAxis, owner = (s.capAxis + 1) % 3;
+    for (int i = 0; i < 6; ++i) {
+      const Face& f = faces[i];
+      const Part& part = f.axis == cap ? r.parts[f.side > 0 ? 0 : 1] : r.parts[2];
+      WorldBox clip{glm::dvec3(-kInf), glm::dvec3(kInf)};
+      if (f.axis == cap) clip = {{t, t, -kInf}, {f.width - t, f.height - t, kInf}};
+      else if (f.axis != owner) clip = {{t, -kInf, -kInf}, {f.width - t, kInf, kInf}};
+      Scope q;
+      q.size = {f.width, f.height, 0};
+      q.thickness = t;
+      q.seedPoint = s.seedPoint + f.corner;
+      q.salt = mix(s.salt, 200 + static_cast<std::uint64_t>(i));
+      if (Status st = placeFace(r, part.rule, part.at, q, s, c, f.axes, o + f.corner, clip, out); !st) return st;
+    }
+    return Ok{};
+  }
+
+  // A mass on the face, as deep as the part says. On a wall it keeps the face's frame (z out); on
+  // a horizontal face it stands upright (its y along the normal), as a building's parts do.
+  Status extrude(const Rule& r, const Scope& s, const Context& c, std::vector<Piece>& out) {
+    if (!s.quad) return Error{at(r) + "Extrude needs a facade (a quad scope); this scope is a mass"};
+    const double depth = r.parts[0].size.low;
+    Scope box = s;
+    box.quad = false;
+    box.size.z = depth;
+    box.capAxis = 2;
+    if (s.up != glm::ivec3(0, 0, 1)) return place(r.parts[0].rule, r.parts[0].at, box, c, out);
+    box.origin = glm::dvec3(0.0);
+    box.size = {s.size.x, depth, s.size.y};
+    box.capAxis = 1;
+    const IMat3 upright = axesMatrix({1, 0, 0}, {0, 0, 1}, {0, -1, 0});
     const WorldBox all{glm::dvec3(-kInf), glm::dvec3(kInf)};
-    const WorldBox sides{{t, -kInf, -kInf}, {z - t, kInf, kInf}};
-    const WorldBox caps{{t, t, -kInf}, {x - t, z - t, kInf}};
-    const Part &top = r.parts[0], &bottom = r.parts[1], &side = r.parts[2];
-    Status st = placeFace(r, side.rule, side.at, face(0, x, y), c, IMat3(1), o + glm::dvec3(0, 0, z), all, out);
-    if (st) st = placeFace(r, side.rule, side.at, face(1, x, y), c, axesMatrix({-1, 0, 0}, {0, 1, 0}, {0, 0, -1}), o + glm::dvec3(x, 0, 0), all, out);
-    if (st) st = placeFace(r, side.rule, side.at, face(2, z, y), c, axesMatrix({0, 0, -1}, {0, 1, 0}, {1, 0, 0}), o + glm::dvec3(x, 0, z), sides, out);
-    if (st) st = placeFace(r, side.rule, side.at, face(3, z, y), c, axesMatrix({0, 0, 1}, {0, 1, 0}, {-1, 0, 0}), o, sides, out);
-    if (st) st = placeFace(r, top.rule, top.at, face(4, x, z), c, axesMatrix({1, 0, 0}, {0, 0, -1}, {0, 1, 0}), o + glm::dvec3(0, y, z), caps, out);
-    if (st) st = placeFace(r, bottom.rule, bottom.at, face(5, x, z), c, axesMatrix({1, 0, 0}, {0, 0, 1}, {0, -1, 0}), o, caps, out);
-    return st;
+    return placeFace(r, r.parts[0].rule, r.parts[0].at, box, s, c, upright, s.origin + glm::dvec3(0, s.size.y, 0), all, out);
   }
 
   // The pieces of one rule application, built in a frame with its origin at `origin` and turned

@@ -469,7 +469,7 @@ class Parser {
       r.op = Op::ComponentSplit;
       return rulesOnly(3);
     }
-    if (o == "Extrude") {
+    if (o == "Extrude" || o == "ExtrudeZ") {  // the thesis's complex house writes ExtrudeZ
       r.op = Op::Extrude;
       if (items.size() != 1 || !items[0].value || items[0].value->kind != Arg::Kind::Number || items[0].value->relative ||
           !(items[0].value->number > 0))
@@ -492,7 +492,7 @@ class Parser {
       return rulesOnly(o == "Layer" ? 0 : 1);
     }
     return error(op.at, "unknown operator '" + o + "' in the brace form (Generate, SubdivideX/Y/Z, RepeatX/Y/Z, RandomRule, "
-                        "ComponentSplit, Extrude, Translate, Scale, Layer, RandStack)");
+                        "ComponentSplit, Extrude, ExtrudeZ, Translate, Scale, Layer, RandStack)");
   }
 
   Status fromBare(Rule& r, const Token& op) {
