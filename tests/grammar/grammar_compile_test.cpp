@@ -104,6 +104,9 @@ TEST(GrammarCompile, FigureTwelveHasTheWindowsAndFloorsItsArithmeticSays) {
   }
   // Between floors, above the ground floor's windows, only wall.
   EXPECT_EQ(runsAlong(*c, 2.9, 0.005, 15.0).size(), 1u);
+  // Shared through the Layer's Skips: per floor kind a tile and a window column, the middle
+  // floors' row, the floors' split and the facade; not a block per window.
+  EXPECT_LE(c->hierarchy.blocks.size(), 9u);
 }
 
 // Three window styles chosen per tile: the tiles that came out alike are one block each, so a

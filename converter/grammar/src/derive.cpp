@@ -157,7 +157,7 @@ class Deriver {
     if (!whole) {
       const WorldBox region = piece.region;
       piece.region = shifted(region, -region.min);
-      piece.offsetM -= region.min;
+      if (piece.kind == Piece::Kind::Node) piece.offsetM -= region.min;
       piece = intern({region.size(), {piece}}, region, region.min, 0);
     }
     d_.root = piece;
@@ -431,7 +431,7 @@ class Deriver {
     if (!set.content[index]) return Ok{};
     Piece p = *set.content[index];
     p.region = intersect(shifted(p.region, -c.toLayer), s.solid());
-    p.offsetM -= c.toLayer;
+    if (p.kind == Piece::Kind::Node) p.offsetM -= c.toLayer;
     if (hasVolume(p.region)) out.push_back(p);
     return Ok{};
   }
@@ -552,7 +552,7 @@ class Deriver {
     Node node{bounds.size(), {}};
     for (Piece& p : kept) {
       p.region = shifted(p.region, -bounds.min);
-      p.offsetM -= bounds.min;
+      if (p.kind == Piece::Kind::Node) p.offsetM -= bounds.min;
       node.pieces.push_back(std::move(p));
     }
     return std::optional<Piece>{intern(std::move(node), turned(bounds, m, origin), origin + glm::dvec3(glm::dmat3(m) * bounds.min), cube)};

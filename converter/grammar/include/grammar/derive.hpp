@@ -40,7 +40,8 @@ struct Piece {
   std::uint16_t material = 0;    // Box: index into Derivation::materials
   NodeId node = 0;               // Node: placed with its frame's origin at offsetM, turned by the
   glm::dvec3 offsetM{0.0};       //   cube rotation `cube` (hierarchy.hpp), and tiled along the
-  int cube = 0;                  //   node's axes whose `wrap` is set
+  int cube = 0;                  //   node's axes whose `wrap` is set (all zero for a box, so that
+                                 //   alike boxes compare equal wherever they were made)
   std::array<bool, 3> wrap{};
   friend bool operator==(const Piece&, const Piece&) = default;
 };

@@ -1,0 +1,34 @@
+#!/usr/bin/env bash
+# The size table of docs/GRAMMAR.md: every sample grammar compiled (seed 0) to an HNI and to the
+# derivation's own mesh, and that mesh packed the way a user would ship it: gltfpack -cc (the
+# meshoptimizer project's packer, from npm) and gzip -9.
+#   scripts/grammar-sizes.sh [BUILD]        (BUILD: the build folder, default build)
+# Installs gltfpack into .tools/ with npm on first use.
+set -euo pipefail
+build=${1:-build}
+root=$(cd "$(dirname "$0")/.." && pwd)
+gltfpack="$root/.tools/node_modules/.bin/gltfpack"
+if [ ! -x "$gltfpack" ]; then
+  echo "grammar-sizes: installing gltfpack 1.3.0 into .tools/ (npm)" >&2
+  npm install --silent --prefix "$root/.tools" gltfpack@1.3.0 >/dev/null
+fi
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+echo "| sample | shapes | blocks | HNI raw | HNI PNG | triangles | OBJ + MTL | gltfpack -cc | + gzip -9 | PNG / (gltfpack + gzip) |"
+echo "|---|---|---|---|---|---|---|---|---|---|"
+for grammar in "$root"/samples/grammars/*.grammar; do
+  name=$(basename "$grammar" .grammar)
+  "$root/$build/cli/nut" grammar "$grammar" -o "$work/$name.png" --mesh "$work/$name.obj" --report "$work/$name.json" --quiet
+  "$gltfpack" -i "$work/$name.obj" -o "$work/$name.glb" -cc >/dev/null
+  gzip -9 -c "$work/$name.glb" > "$work/$name.glb.gz"
+  python3 - "$name" "$work" <<'PY'
+import json, os, sys
+name, work = sys.argv[1], sys.argv[2]
+r = json.load(open(f"{work}/{name}.json"))
+size = lambda p: os.path.getsize(f"{work}/{p}")
+png, gz = r["png_bytes"], size(f"{name}.glb.gz")
+raw = r["image"][0] * r["image"][1] * 4
+print(f"| {name} | {r['shapes']:,} | {r['blocks']} | {raw:,} | {png:,} | {r['mesh']['triangles']:,} | "
+      f"{size(name + '.obj') + size(name + '.mtl'):,} | {size(name + '.glb'):,} | {gz:,} | {png / gz:.2f} |")
+PY
+done
