@@ -14,6 +14,8 @@
 
 #include <glm/geometric.hpp>
 
+#include <grammar/compile.hpp>
+#include <nut/mesh_export.hpp>
 #include <nut/png_io.hpp>
 #include <nut/raycast.hpp>
 
@@ -58,6 +60,25 @@ TEST_P(SampleMatchesCpu, HeuristicLookup) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Samples, SampleMatchesCpu, ::testing::Values("facade", "building", "solids", "rotations"));
+
+// Every sample grammar (samples/grammars/), compiled with seed 0, from the default camera.
+class GrammarSampleMatchesCpu : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(GrammarSampleMatchesCpu, HeuristicLookup) {
+  auto g = grammar::readGrammar(std::string(NUT_SOURCE_DIR) + "/samples/grammars/" + GetParam() + ".grammar");
+  ASSERT_TRUE(g) << g.error().message;
+  auto c = grammar::compileGrammar(*g);
+  ASSERT_TRUE(c) << c.error().message;
+  auto bounds = contentBounds(c->hierarchy, c->originM);
+  ASSERT_TRUE(bounds);
+  Scene s{"grammar-" + GetParam(), c->hierarchy, c->image, c->originM, fitCamera(*bounds, 480, 320), {}};
+  expectSameImage(s);
+}
+
+INSTANTIATE_TEST_SUITE_P(Grammars, GrammarSampleMatchesCpu,
+                         ::testing::Values("krecklau_figure12", "pga_simple_house", "pga_random_windows",
+                                           "pga_random_rule", "pga_complex_house", "marvie_building", "gbef_m1",
+                                           "gbef_m2", "gbef_m8"));
 
 TEST(GlMatchesCpu, ExactLookup) {
   Scene s = sampleScene("building", 640, 360);
