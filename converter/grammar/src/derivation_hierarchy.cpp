@@ -3,6 +3,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
+#include <tuple>
 
 #include <converter/assemble.hpp>
 #include <converter/blocks.hpp>
@@ -43,31 +45,44 @@ std::vector<long> reachedBlocks(const Derivation& d) {
   return id;
 }
 
+// The cells [first, last) of `bounds` that a piece's [lo, hi] covers.
+std::pair<int, int> cellRange(const std::vector<double>& bounds, double lo, double hi) {
+  const auto cell = [&](double v) {
+    return static_cast<int>(std::upper_bound(bounds.begin(), bounds.end(), v) - bounds.begin()) - 1;
+  };
+  const int first = std::max(0, cell(lo + kMergeM / 2));
+  const int last = std::min(static_cast<int>(bounds.size()) - 1, cell(hi - kMergeM / 2) + 1);
+  return {first, last};
+}
+
 Block blockOf(const Node& node, const std::vector<long>& blockId) {
   Block b;
   for (int a = 0; a < 3; ++a) b.boundsM[static_cast<std::size_t>(a)] = axisBounds(node, a);
   b.cells.assign(static_cast<std::size_t>(b.cellCount(0)) * static_cast<std::size_t>(b.cellCount(1)) *
                      static_cast<std::size_t>(b.cellCount(2)),
                  Cell::empty());
-  for (int z = 0; z < b.cellCount(2); ++z)
-    for (int y = 0; y < b.cellCount(1); ++y)
-      for (int x = 0; x < b.cellCount(0); ++x) {
-        const glm::dvec3 lo(b.boundsM[0][x], b.boundsM[1][y], b.boundsM[2][z]);
-        const glm::dvec3 hi(b.boundsM[0][x + 1], b.boundsM[1][y + 1], b.boundsM[2][z + 1]);
-        const glm::dvec3 centre = 0.5 * (lo + hi);
-        for (const Piece& p : node.pieces) {
-          if (glm::any(glm::lessThanEqual(centre, p.region.min)) || glm::any(glm::greaterThanEqual(centre, p.region.max))) continue;
+  // Pieces do not overlap, so each cell is covered by one piece at most: fill each piece's cells.
+  using RecordKey = std::tuple<BlockId, double, double, double, int, std::array<bool, 3>>;
+  std::map<RecordKey, std::uint32_t> records;
+  for (const Piece& p : node.pieces) {
+    std::array<std::pair<int, int>, 3> range;
+    for (int a = 0; a < 3; ++a) range[a] = cellRange(b.boundsM[a], p.region.min[a], p.region.max[a]);
+    for (int z = range[2].first; z < range[2].second; ++z)
+      for (int y = range[1].first; y < range[1].second; ++y)
+        for (int x = range[0].first; x < range[0].second; ++x) {
           if (p.kind == Piece::Kind::Box) {
             b.cell(x, y, z) = Cell::box(p.material);
-          } else {
-            const Redirection r{static_cast<BlockId>(blockId[p.node]), p.offsetM - lo, Rotation{static_cast<std::uint8_t>(p.cube), 0}, p.wrap};
-            auto it = std::find(b.redirections.begin(), b.redirections.end(), r);
-            if (it == b.redirections.end()) it = b.redirections.insert(it, r);
-            b.cell(x, y, z) = Cell::redirect(static_cast<std::uint32_t>(it - b.redirections.begin()));
+            continue;
           }
-          break;
+          const glm::dvec3 lo(b.boundsM[0][x], b.boundsM[1][y], b.boundsM[2][z]);
+          const auto target = static_cast<BlockId>(blockId[p.node]);
+          const glm::dvec3 offset = p.offsetM - lo;
+          const auto [it, added] = records.try_emplace(RecordKey{target, offset.x, offset.y, offset.z, p.cube, p.wrap},
+                                                       static_cast<std::uint32_t>(b.redirections.size()));
+          if (added) b.redirections.push_back({target, offset, Rotation{static_cast<std::uint8_t>(p.cube), 0}, p.wrap});
+          b.cell(x, y, z) = Cell::redirect(it->second);
         }
-      }
+  }
   return b;
 }
 
