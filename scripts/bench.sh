@@ -4,7 +4,7 @@
 set -euo pipefail
 build=${1:-build}
 mkdir -p out/bench
-for bench in packer_bench lookup_bench render_bench load_bench scene_bench gl_bench convert_bench winding_bench; do
+for bench in packer_bench lookup_bench grammar_bench render_bench load_bench scene_bench gl_bench convert_bench winding_bench; do
   echo "== $bench" >&2
   "$build/bench/$bench" --benchmark_out="out/bench/$bench.json" --benchmark_out_format=json
 done
