@@ -1,7 +1,7 @@
 // Grammar producer speed (docs/GRAMMAR.md, "Speed"): distinct buildings compiled per second on one
 // core, each iteration a new seed of the PGA thesis's complex house (so each building is its own
-// derivation, not a cached one), and the stages on their own: the derivation, the hierarchy,
-// compile() to pixels, and the PNG (zlib; `nut grammar` writes Zopfli, about 30 times slower).
+// derivation, not a cached one): the derivation alone, with the hierarchy and compile() to pixels,
+// and with a PNG (zlib; `nut grammar` writes Zopfli, slower).
 #include <benchmark/benchmark.h>
 
 #include <string>
