@@ -9,6 +9,9 @@
 #include <string>
 #include <vector>
 
+#include <glm/geometric.hpp>
+#include <glm/vec2.hpp>
+
 #include <grammar/compile.hpp>
 #include <nut/hni.hpp>
 #include <nut/png_encode.hpp>
@@ -107,6 +110,60 @@ TEST(GrammarCompile, FigureTwelveHasTheWindowsAndFloorsItsArithmeticSays) {
   // Shared through the Layer's Skips: per floor kind a tile and a window column, the middle
   // floors' row, the floors' split and the facade; not a block per window.
   EXPECT_LE(c->hierarchy.blocks.size(), 9u);
+}
+
+// How many separate runs of `colour` a line of straight rays (from +z) crosses, from `from` to `to`.
+int runsOf(const CompiledGrammar& c, const std::array<std::uint8_t, 3>& colour, glm::dvec2 from, glm::dvec2 to) {
+  const HniRayCaster caster(c.image, c.originM);
+  const int steps = static_cast<int>(glm::length(to - from) / 0.01);
+  int runs = 0;
+  bool inside = false;
+  for (int i = 0; i <= steps; ++i) {
+    const glm::dvec2 p = from + (to - from) * (static_cast<double>(i) / steps);
+    const bool match = caster.trace({p.x, p.y, 50.0}, {0, 0, -1}, 1e-4, RayCastOptions{Lookup::Exact}).colour == colour;
+    runs += match && !inside;
+    inside = match;
+  }
+  return runs;
+}
+
+// Windows counted along rows and columns of the front of each sample, against counts worked out by
+// hand from each grammar's sizes (seed 0). The window colour is read at one window's centre.
+TEST(GrammarCompile, EverySampleHasTheWindowsItsSizesSay) {
+  struct Line {
+    glm::dvec2 from, to;
+    int windows;
+  };
+  const struct {
+    std::string sample;
+    glm::dvec2 window;  // the centre of one window
+    std::vector<Line> lines;
+  } cases[] = {
+      // 4 x 6 x 4 mass, front at z = 4: six 1 m floors of eight 0.5 m tiles, each window the middle
+      // half of its tile both ways.
+      {"pga_simple_house", {0.25, 0.5}, {{{0.01, 2.5}, {3.99, 2.5}, 8}, {{0.25, 0.01}, {0.25, 5.99}, 6}}},
+      // 14 x 15 x 10: ground floor 2.4 m door then 11.6 m of 1.8 m tiles (6); four 3 m floors of
+      // 14 / 1.8 -> 8 tiles; windows 1.4 m high from 0.91 m above each floor.
+      {"marvie_building", {3.367, 1.61}, {{{0.01, 1.61}, {13.99, 1.61}, 6}, {{0.01, 4.61}, {13.99, 4.61}, 8}, {{0.875, 0.01}, {0.875, 14.99}, 4}}},
+      // 14 x 16 facade: 4 m ground floor of 3.5 m shops (4), 11.2 m of 3.2 m floors (round(3.5) = 4,
+      // 2.8 m each) of 2.8 m tiles (5), 0.8 m cornice; a window 1.6 m high, 0.75 m up its floor.
+      {"gbef_m1", {1.4, 5.55}, {{{0.01, 5.55}, {13.99, 5.55}, 5}, {{0.01, 1.9}, {13.99, 1.9}, 4}, {{1.4, 0.01}, {1.4, 15.99}, 5}}},
+      // 16 x 19 facade: 4.5 m ground floor (two 3 m shops each side of a 3.2 m entrance), 13.5 m of
+      // 3.4 m storeys (4, 3.375 m each: a 0.25 m course, then six 2.667 m tiles), recessed glass.
+      {"gbef_m2", {1.333, 6.306}, {{{0.01, 6.306}, {15.99, 6.306}, 6}, {{0.01, 2.1}, {15.99, 2.1}, 4}, {{1.333, 4.6}, {1.333, 18.9}, 4}}},
+  };
+  for (const auto& c : cases) {
+    SCOPED_TRACE(c.sample);
+    auto g = readGrammar(samplePath(c.sample));
+    ASSERT_TRUE(g) << g.error().message;
+    auto compiledSample = compileGrammar(*g);
+    ASSERT_TRUE(compiledSample) << compiledSample.error().message;
+    const auto window = colourAt(*compiledSample, c.window.x, c.window.y);
+    EXPECT_GT(window[2], window[0]) << "the probe hits a window (blue-grey)";
+    for (const Line& line : c.lines)
+      EXPECT_EQ(runsOf(*compiledSample, window, line.from, line.to), line.windows)
+          << "from " << line.from.x << ", " << line.from.y << " to " << line.to.x << ", " << line.to.y;
+  }
 }
 
 // Three window styles chosen per tile: the tiles that came out alike are one block each, so a

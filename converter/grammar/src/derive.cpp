@@ -327,7 +327,9 @@ class Deriver {
     if (Status st = checkAxis(r, s); !st) return st;
     const double length = s.size[r.axis];
     const double wanted = draw(r, s, c, r.parts[0].size, 0);
-    const double count = std::max(1.0, std::round(length / wanted));
+    // The nearest whole number of tiles, halves rounded up also when the division lands a hair
+    // below the half (16 - 4.8 is 11.199999999999999 in doubles: 3.5 tiles of 3.2 m are 4).
+    const double count = std::max(1.0, std::floor(length / wanted + 0.5 + 1e-9));
     if (count > kMaxRepeat) return Error{at(r) + "a repeat of " + metres(wanted) + " over " + metres(length) + " makes more than " + std::to_string(kMaxRepeat) + " tiles"};
     const int n = static_cast<int>(count);
     const double pitch = length / n;
