@@ -22,6 +22,7 @@
 #include <scene/obj.hpp>
 
 #include "cli_support.hpp"
+#include "test_files.hpp"
 #include "declared_size_png.hpp"
 
 namespace nut {
@@ -251,7 +252,7 @@ TEST(MainCli, NoCommandIsAUsageErrorAndEveryHelpHasAnExample) {
   expectOneErrorLine(nut(""), 2, "see nut --help");
   const CliRun help = nut("--help");
   EXPECT_EQ(help.exitCode, 0);
-  for (const char* command : {"info", "validate", "render", "export-mesh", "render-mesh", "compare", "convert"}) {
+  for (const char* command : {"info", "validate", "render", "export-mesh", "render-mesh", "compare", "grammar", "convert"}) {
     EXPECT_NE(help.stdoutText.find(std::string("  ") + command + " "), std::string::npos) << command;
     // Every command's help ends with an example of itself.
     const CliRun own = nut(std::string(command) + " --help");
@@ -263,11 +264,42 @@ TEST(MainCli, NoCommandIsAUsageErrorAndEveryHelpHasAnExample) {
 }
 
 
+// `nut grammar` writes the HNI, the mesh and the report it is asked for; the HNI carries the
+// origin the report gives and validates. A broken grammar is one error line naming file, line and
+// column, exit 1, and writes nothing; a malformed --size is a usage error.
+TEST(GrammarCli, WritesWhatItIsAskedForAndNothingOnError) {
+  const std::string grammar = source("samples/grammars/pga_simple_house.grammar");
+  for (const char* name : {"house.png", "house.obj", "house.mtl", "house.json"}) fs::remove(out(name));
+  const CliRun r = nut("grammar " + grammar + " -o " + out("house.png") + " --seed 3 --mesh " + out("house.obj") +
+                       " --report " + out("house.json"));
+  ASSERT_EQ(r.exitCode, 0) << r.stderrText;
+  auto png = readPng(out("house.png"));
+  ASSERT_TRUE(png) << png.error().message;
+  EXPECT_TRUE(validate(png->image).ok());
+  EXPECT_EQ(png->text.generator, "nut grammar");
+  const auto report = nlohmann::json::parse(testing::fileText(out("house.json")));
+  EXPECT_EQ(report["seed"], 3);
+  EXPECT_EQ(report["png_bytes"], fs::file_size(out("house.png")));
+  EXPECT_DOUBLE_EQ(report["origin_m"][2].get<double>(), png->text.originM.z);
+  std::vector<std::string> warnings;
+  auto mesh = scene::readObjMesh(out("house.obj"), warnings);
+  ASSERT_TRUE(mesh) << mesh.error().message;
+  EXPECT_EQ(mesh->triangles.size(), report["mesh"]["triangles"].get<std::size_t>());
+
+  const std::string broken = testing::writeTestFile("cli", "broken.grammar", "@size 4, 3\nA -> SplitX(Abs, 5, B)\nB -> Mat(Color, 0, 1, 0, 0, 1)\n");
+  fs::remove(out("broken.png"));
+  expectOneErrorLine(nut("grammar " + broken + " -o " + out("broken.png")), 1, "broken.grammar:2:1: rule 'A': parts of 5 m");
+  EXPECT_FALSE(fs::exists(out("broken.png")));
+  expectOneErrorLine(nut("grammar " + grammar + " -o " + out("broken.png") + " --size 4"), 2, "--size '4'");
+  expectOneErrorLine(nut("grammar " + grammar + " -o " + out("broken.obj")), 2, "expected a name ending in .png");
+  EXPECT_FALSE(fs::exists(out("broken.png")));
+}
+
 // A misspelt command is named, with the commands there are, on one line.
 TEST(MainCli, AnUnknownCommandIsNamedWithTheCommandsThereAre) {
   const CliRun r = nut("rendr samples/hni/building.png -o x.png");
   expectOneErrorLine(r, 2, "unknown command 'rendr'");
-  EXPECT_NE(r.stderrText.find("info, validate, render, export-mesh, render-mesh, compare, convert"), std::string::npos)
+  EXPECT_NE(r.stderrText.find("info, validate, render, export-mesh, render-mesh, compare, grammar, convert"), std::string::npos)
       << r.stderrText;
   expectOneErrorLine(nut("--json rendr"), 2, "unknown command 'rendr'");
 }
