@@ -54,7 +54,8 @@ void BM_CompileToPng(benchmark::State& state, const std::string& name) {
     bytes += nut::encodePng(c->image, nullptr, nut::PngEffort::Small).size();
   }
   state.SetItemsProcessed(state.iterations());
-  state.counters["png_bytes"] = benchmark::Counter(static_cast<double>(bytes) / static_cast<double>(state.iterations()));
+  state.counters["png_bytes"] =
+      benchmark::Counter(static_cast<double>(bytes) / static_cast<double>(state.iterations()));
 }
 
 }  // namespace

@@ -69,27 +69,27 @@ int run(const GrammarCliOptions& o) {
   }
   const HniStats stats = computeStats(compiled->image);
   if (!o.report.empty()) {
-    nlohmann::json report = {
-        {"grammar", o.input},
-        {"start", g->start},
-        {"seed", o.seed},
-        {"wall_m", o.wallM},
-        {"origin_m", {compiled->originM.x, compiled->originM.y, compiled->originM.z}},
-        {"shapes", compiled->derivation.shapes},
-        {"nodes", compiled->derivation.nodes.size()},
-        {"blocks", stats.blocks},
-        {"cells", stats.cells},
-        {"redirections", stats.redirections},
-        {"materials", stats.materials},
-        {"dag_depth", stats.dagDepth},
-        {"image", {stats.width, stats.height}},
-        {"png_bytes", pngBytes},
-        {"seconds", {{"derive", compiled->deriveSeconds}, {"compile", compiled->compileSeconds}}}};
+    nlohmann::json report = {{"grammar", o.input},
+                             {"start", g->start},
+                             {"seed", o.seed},
+                             {"wall_m", o.wallM},
+                             {"origin_m", {compiled->originM.x, compiled->originM.y, compiled->originM.z}},
+                             {"shapes", compiled->derivation.shapes},
+                             {"nodes", compiled->derivation.nodes.size()},
+                             {"blocks", stats.blocks},
+                             {"cells", stats.cells},
+                             {"redirections", stats.redirections},
+                             {"materials", stats.materials},
+                             {"dag_depth", stats.dagDepth},
+                             {"image", {stats.width, stats.height}},
+                             {"png_bytes", pngBytes},
+                             {"seconds", {{"derive", compiled->deriveSeconds}, {"compile", compiled->compileSeconds}}}};
     if (!o.mesh.empty()) report["mesh"] = {{"file", o.mesh}, {"triangles", triangles}};
     if (Status s = writeTextFile(o.report, report.dump(2) + "\n"); !s) return fail(s.error().message, kUnreadable);
   }
   if (!o.quiet)
-    std::fprintf(stderr, "grammar: %s: %lld shapes, %zu distinct, %d blocks; wrote %s (%dx%d, %ju bytes PNG) in %.3f s\n",
+    std::fprintf(stderr,
+                 "grammar: %s: %lld shapes, %zu distinct, %d blocks; wrote %s (%dx%d, %ju bytes PNG) in %.3f s\n",
                  o.input.c_str(), compiled->derivation.shapes, compiled->derivation.nodes.size(), stats.blocks,
                  o.output.c_str(), stats.width, stats.height, static_cast<std::uintmax_t>(pngBytes),
                  compiled->deriveSeconds + compiled->compileSeconds);
@@ -103,8 +103,10 @@ void addGrammarCommand(CLI::App& app, int& exitCode) {
   CLI::App* cmd = app.add_subcommand("grammar", "Compile a facade or building grammar into an HNI (docs/GRAMMAR.md)");
   cmd->add_option("input", o->input, "Grammar file, in the call form or the brace form")->required();
   cmd->add_option("-o,--output", o->output, "Output HNI")->required()->check(outputExtension(".png", "an HNI (PNG)"));
-  cmd->add_option("--seed", o->seed, "Seed of the random choices: the same seed gives the same HNI")->capture_default_str();
-  cmd->add_option("--size", o->size, "Start scope: W,H (a facade) or W,H,D (a mass) in metres; default: the file's @size");
+  cmd->add_option("--seed", o->seed, "Seed of the random choices: the same seed gives the same HNI")
+      ->capture_default_str();
+  cmd->add_option("--size", o->size,
+                  "Start scope: W,H (a facade) or W,H,D (a mass) in metres; default: the file's @size");
   cmd->add_option("--start", o->start, "Start rule; default: the file's @start, else the one rule no other names");
   cmd->add_option("--wall", o->wallM, "Thickness of a facade's wall and of a mass's walls (metres)")
       ->capture_default_str()

@@ -1,6 +1,7 @@
 // The CLI tests' runner (cli_support.hpp).
 #include "cli_support.hpp"
 
+#include <algorithm>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -13,7 +14,8 @@
 namespace nut::testing {
 
 CliRun runNut(const std::string& args, const std::string& group) {
-  const std::string test = ::testing::UnitTest::GetInstance()->current_test_info()->name();
+  std::string test = ::testing::UnitTest::GetInstance()->current_test_info()->name();
+  std::replace(test.begin(), test.end(), '/', '.');  // a parameterised test's name is Name/param
   const std::string out = outputPath(group, test + ".stdout.txt"), err = outputPath(group, test + ".stderr.txt");
   const int status = std::system((std::string(NUT_CLI_PATH) + " > " + out + " 2> " + err + " " + args).c_str());
   CliRun r;

@@ -144,13 +144,19 @@ TEST(GrammarCompile, EverySampleHasTheWindowsItsSizesSay) {
       {"pga_simple_house", {0.25, 0.5}, {{{0.01, 2.5}, {3.99, 2.5}, 8}, {{0.25, 0.01}, {0.25, 5.99}, 6}}},
       // 14 x 15 x 10: ground floor 2.4 m door then 11.6 m of 1.8 m tiles (6); four 3 m floors of
       // 14 / 1.8 -> 8 tiles; windows 1.4 m high from 0.91 m above each floor.
-      {"marvie_building", {3.367, 1.61}, {{{0.01, 1.61}, {13.99, 1.61}, 6}, {{0.01, 4.61}, {13.99, 4.61}, 8}, {{0.875, 0.01}, {0.875, 14.99}, 4}}},
+      {"marvie_building",
+       {3.367, 1.61},
+       {{{0.01, 1.61}, {13.99, 1.61}, 6}, {{0.01, 4.61}, {13.99, 4.61}, 8}, {{0.875, 0.01}, {0.875, 14.99}, 4}}},
       // 14 x 16 facade: 4 m ground floor of 3.5 m shops (4), 11.2 m of 3.2 m floors (round(3.5) = 4,
       // 2.8 m each) of 2.8 m tiles (5), 0.8 m cornice; a window 1.6 m high, 0.75 m up its floor.
-      {"gbef_m1", {1.4, 5.55}, {{{0.01, 5.55}, {13.99, 5.55}, 5}, {{0.01, 1.9}, {13.99, 1.9}, 4}, {{1.4, 0.01}, {1.4, 15.99}, 5}}},
+      {"gbef_m1",
+       {1.4, 5.55},
+       {{{0.01, 5.55}, {13.99, 5.55}, 5}, {{0.01, 1.9}, {13.99, 1.9}, 4}, {{1.4, 0.01}, {1.4, 15.99}, 5}}},
       // 16 x 19 facade: 4.5 m ground floor (two 3 m shops each side of a 3.2 m entrance), 13.5 m of
       // 3.4 m storeys (4, 3.375 m each: a 0.25 m course, then six 2.667 m tiles), recessed glass.
-      {"gbef_m2", {1.333, 6.306}, {{{0.01, 6.306}, {15.99, 6.306}, 6}, {{0.01, 2.1}, {15.99, 2.1}, 4}, {{1.333, 4.6}, {1.333, 18.9}, 4}}},
+      {"gbef_m2",
+       {1.333, 6.306},
+       {{{0.01, 6.306}, {15.99, 6.306}, 6}, {{0.01, 2.1}, {15.99, 2.1}, 4}, {{1.333, 4.6}, {1.333, 18.9}, 4}}},
   };
   for (const auto& c : cases) {
     SCOPED_TRACE(c.sample);
@@ -297,15 +303,23 @@ TEST(GrammarCompile, DerivationErrorsNameTheRule) {
     DeriveOptions options;
   } cases[] = {
       {"@size 4, 3\nA -> SplitX(Abs, 3, B, Abs, 2, B)\nB -> Mat(Color, 0, 1, 0, 0, 1)",
-       "g:2:1: rule 'A': parts of 5 m do not fit a scope of 4 m along x", {}},
+       "g:2:1: rule 'A': parts of 5 m do not fit a scope of 4 m along x",
+       {}},
       {"@size 4, 3\nA -> Intrusion(0.5, B, B, B, B, B)\nB -> Mat(Color, 0, 1, 0, 0, 1)",
-       "g:2:1: rule 'A': a recess of 0.5 m needs a wall thicker than that; the wall is 0.3 m (--wall)", {}},
+       "g:2:1: rule 'A': a recess of 0.5 m needs a wall thicker than that; the wall is 0.3 m (--wall)",
+       {}},
       {"@size 4, 3\nA -> ComponentSplit {B, B, B}\nB -> Generate {Quad}",
-       "g:2:1: rule 'A': ComponentSplit needs a mass (a box scope); this scope is a facade", {}},
+       "g:2:1: rule 'A': ComponentSplit needs a mass (a box scope); this scope is a facade",
+       {}},
       {"@size 4, 3, 4\nA -> SubdivideX {1r : B, 1r : T}\nT -> Translate {(-1, 0, 0) : B}\nB -> Generate {Box}",
-       "g:2:1: rule 'A': two of its shapes overlap", {}},
-      {"@size 400, 3\nA -> RepeatX {0.01 : B}\nB -> Generate {Quad}", "the derivation exceeds 1000 shapes", {.maxShapes = 1000}},
-      {"A -> Generate {Quad}", "g: no start scope: give --size W,H (a facade) or W,H,D (a mass), or @size in the file", {}},
+       "g:2:1: rule 'A': two of its shapes overlap",
+       {}},
+      {"@size 400, 3\nA -> RepeatX {0.01 : B}\nB -> Generate {Quad}",
+       "the derivation exceeds 1000 shapes",
+       {.maxShapes = 1000}},
+      {"A -> Generate {Quad}",
+       "g: no start scope: give --size W,H (a facade) or W,H,D (a mass), or @size in the file",
+       {}},
   };
   for (const auto& c : cases) {
     SCOPED_TRACE(c.text);

@@ -29,7 +29,8 @@ constexpr double kMinWithinPct = 99.5;
 double coveredPct(const Image& image) {
   long covered = 0;
   for (std::size_t i = 0; i < image.pixels.size(); i += 4)
-    if (image.pixels[i] != kBackground[0] || image.pixels[i + 1] != kBackground[1] || image.pixels[i + 2] != kBackground[2])
+    if (image.pixels[i] != kBackground[0] || image.pixels[i + 1] != kBackground[1] ||
+        image.pixels[i + 2] != kBackground[2])
       ++covered;
   return 400.0 * static_cast<double>(covered) / static_cast<double>(image.pixels.size());
 }
@@ -40,7 +41,8 @@ std::vector<Camera> views(const WorldBox& box) {
   const Camera fitted = fitCamera(box, 640, 360);
   const double distance = glm::length(fitted.eye - fitted.target);
   std::vector<Camera> out{fitted};
-  for (const glm::dvec3 from : {glm::dvec3(-0.7, 0.35, 1.0), glm::dvec3(0.25, 1.6, 0.35), glm::dvec3(1.0, 0.12, 0.45)}) {
+  for (const glm::dvec3 from :
+       {glm::dvec3(-0.7, 0.35, 1.0), glm::dvec3(0.25, 1.6, 0.35), glm::dvec3(1.0, 0.12, 0.45)}) {
     Camera c = fitted;
     c.eye = c.target + distance * glm::normalize(from);
     out.push_back(c);

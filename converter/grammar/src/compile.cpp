@@ -9,7 +9,9 @@ namespace nut::grammar {
 
 Result<CompiledGrammar> compileGrammar(const Grammar& g, const DeriveOptions& options) {
   using Clock = std::chrono::steady_clock;
-  const auto seconds = [](Clock::time_point from) { return std::chrono::duration<double>(Clock::now() - from).count(); };
+  const auto seconds = [](Clock::time_point from) {
+    return std::chrono::duration<double>(Clock::now() - from).count();
+  };
   CompiledGrammar out;
   const auto start = Clock::now();
   auto derivation = derive(g, options);

@@ -53,7 +53,8 @@ Status collect(const Derivation& d, const Piece& p, const IMat3& r, const glm::d
   const IMat3 nodeRotation = r * cubeRotationMatrix(p.cube);
   const glm::dvec3 nodeOrigin = t + glm::dmat3(r) * p.offsetM;
   // The tiles of wrapped axes that meet what shows: the shown box in the node's frame.
-  const WorldBox local = turned({shown.min - nodeOrigin, shown.max - nodeOrigin}, transposed(nodeRotation), glm::dvec3(0.0));
+  const WorldBox local =
+      turned({shown.min - nodeOrigin, shown.max - nodeOrigin}, transposed(nodeRotation), glm::dvec3(0.0));
   std::array<long long, 3> first{}, last{};
   for (int a = 0; a < 3; ++a) {
     if (!p.wrap[static_cast<std::size_t>(a)]) continue;
@@ -63,7 +64,8 @@ Status collect(const Derivation& d, const Piece& p, const IMat3& r, const glm::d
   for (long long kz = first[2]; kz <= last[2]; ++kz)
     for (long long ky = first[1]; ky <= last[1]; ++ky)
       for (long long kx = first[0]; kx <= last[0]; ++kx) {
-        const glm::dvec3 step = glm::dvec3(static_cast<double>(kx), static_cast<double>(ky), static_cast<double>(kz)) * node.sizeM;
+        const glm::dvec3 step =
+            glm::dvec3(static_cast<double>(kx), static_cast<double>(ky), static_cast<double>(kz)) * node.sizeM;
         const glm::dvec3 tileOrigin = nodeOrigin + glm::dmat3(nodeRotation) * step;
         for (const Piece& q : node.pieces)
           if (Status s = collect(d, q, nodeRotation, tileOrigin, shown, out); !s) return s;

@@ -17,7 +17,7 @@ namespace nut::grammar {
 namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
-constexpr double kOverlapM = 1e-7;   // pieces may touch; sharing more than this is an overlap
+constexpr double kOverlapM = 1e-7;     // pieces may touch; sharing more than this is an overlap
 constexpr double kRecessFaceM = 0.05;  // thickness of a recess's side, floor and ceiling
 constexpr long long kMaxRepeat = 100'000;
 
@@ -75,7 +75,8 @@ struct NodeHash {
       h = mix(h, static_cast<std::uint64_t>(p.kind) | std::uint64_t{p.material} << 8 | std::uint64_t{p.node} << 24);
       for (int a = 0; a < 3; ++a) h = mix(mix(h, bitsOf(p.region.min[a])), bitsOf(p.region.max[a]));
       for (int a = 0; a < 3; ++a) h = mix(h, bitsOf(p.offsetM[a]));
-      h = mix(h, static_cast<std::uint64_t>(p.cube) | (p.wrap[0] ? 64 : 0) | (p.wrap[1] ? 128 : 0) | (p.wrap[2] ? 256 : 0));
+      h = mix(
+          h, static_cast<std::uint64_t>(p.cube) | (p.wrap[0] ? 64 : 0) | (p.wrap[1] ? 128 : 0) | (p.wrap[2] ? 256 : 0));
     }
     return static_cast<std::size_t>(h);
   }
@@ -87,11 +88,11 @@ struct Scope {
   glm::dvec3 origin{0.0};
   glm::dvec3 size{0.0};
   bool quad = true;
-  double thickness = 0;         // quad: the slab's depth
-  glm::dvec3 seedPoint{0.0};    // where random values are sampled (the facade paper's S_lb)
-  std::uint64_t salt = 0;       // layers and faces sample apart, as the paper's i * s translation
-  glm::ivec3 up{0, 1, 0};       // the world's up in this frame
-  int capAxis = 1;              // box: the axis the mass grew along (ComponentSplit's top is at its end)
+  double thickness = 0;       // quad: the slab's depth
+  glm::dvec3 seedPoint{0.0};  // where random values are sampled (the facade paper's S_lb)
+  std::uint64_t salt = 0;     // layers and faces sample apart, as the paper's i * s translation
+  glm::ivec3 up{0, 1, 0};     // the world's up in this frame
+  int capAxis = 1;            // box: the axis the mass grew along (ComponentSplit's top is at its end)
 
   WorldBox solid() const {
     if (!quad) return {origin, origin + size};
@@ -113,18 +114,18 @@ struct Scope {
 struct LayerSet;
 
 struct Context {
-  std::vector<glm::dvec3> stack;       // RandStack's seeds, the last pushed last
-  std::shared_ptr<LayerSet> layers;    // the innermost Layer's layers, or none
-  int layer = 0;                       // the one being derived
-  glm::dvec3 toLayer{0.0};             // this frame's origin in the Layer's frame
+  std::vector<glm::dvec3> stack;     // RandStack's seeds, the last pushed last
+  std::shared_ptr<LayerSet> layers;  // the innermost Layer's layers, or none
+  int layer = 0;                     // the one being derived
+  glm::dvec3 toLayer{0.0};           // this frame's origin in the Layer's frame
 };
 
 // What a Layer operator starts: its layers, each derived over the Layer's whole scope when a Skip
 // first shows it.
 struct LayerSet {
   const Rule* rule = nullptr;
-  Scope scope;                        // in the Layer's frame
-  Context outer;                      // the context the Layer was applied in
+  Scope scope;    // in the Layer's frame
+  Context outer;  // the context the Layer was applied in
   std::vector<bool> derived;
   std::vector<std::optional<Piece>> content;
 };
@@ -137,7 +138,8 @@ class Deriver {
     const Rule* start = g_.find(g_.start);
     if (!start) return Error{g_.file + ": no start rule"};
     const std::optional<glm::dvec3> size = o_.sizeM ? o_.sizeM : g_.size;
-    if (!size) return Error{g_.file + ": no start scope: give --size W,H (a facade) or W,H,D (a mass), or @size in the file"};
+    if (!size)
+      return Error{g_.file + ": no start scope: give --size W,H (a facade) or W,H,D (a mass), or @size in the file"};
     if (!(size->x > 0 && size->y > 0 && size->z >= 0) || !std::isfinite(size->x + size->y + size->z))
       return Error{g_.file + ": the start scope must have a positive width and height"};
     if (!(o_.wallM > 0)) return Error{g_.file + ": the wall thickness must be positive"};
@@ -172,10 +174,13 @@ class Deriver {
 
   // Applies the rule `name` to s, adding what it makes to `out` (pieces in s's frame). Rules that
   // cut their scope build a node of their own, so that alike results are shared.
-  Status place(const std::string& name, const Position& where, const Scope& s, const Context& c, std::vector<Piece>& out) {
+  Status place(const std::string& name, const Position& where, const Scope& s, const Context& c,
+               std::vector<Piece>& out) {
     if (isEmptyName(name)) return Ok{};
     const Rule* r = g_.find(name);
-    if (!r) return Error{g_.file + ":" + std::to_string(where.line) + ":" + std::to_string(where.column) + ": no rule '" + name + "'"};
+    if (!r)
+      return Error{g_.file + ":" + std::to_string(where.line) + ":" + std::to_string(where.column) + ": no rule '" +
+                   name + "'"};
     if (++shapes_ > o_.maxShapes)
       return Error{at(*r) + "the derivation exceeds " + std::to_string(o_.maxShapes) + " shapes"};
     switch (r->op) {
@@ -193,16 +198,15 @@ class Deriver {
         if (*piece) out.push_back(**piece);
         return Ok{};
       }
-      default:
-        return apply(*r, s, c, out);
+      default: return apply(*r, s, c, out);
     }
   }
 
   // Places the rule `name` on a face (or a turned mass) whose frame is turned by `axes` and has
   // its origin at `faceOrigin` in the frame of scope s; what shows is clipped to `clip` (face frame).
-  Status placeFace(const Rule& parent, const std::string& name, const Position& where, const Scope& face, const Scope& s,
-                   const Context& c, const IMat3& axes, const glm::dvec3& faceOrigin, const WorldBox& clip,
-                   std::vector<Piece>& out) {
+  Status placeFace(const Rule& parent, const std::string& name, const Position& where, const Scope& face,
+                   const Scope& s, const Context& c, const IMat3& axes, const glm::dvec3& faceOrigin,
+                   const WorldBox& clip, std::vector<Piece>& out) {
     std::vector<Piece> pieces;
     Context inner;
     inner.stack = c.stack;  // faces keep the seeds but start without layers
@@ -272,7 +276,9 @@ class Deriver {
   // scope's corner; l: the l-th last RandStack; beyond the stack: the start scope's corner).
   double random(const Rule& r, const Scope& s, const Context& c, int level) const {
     glm::dvec3 point = s.seedPoint;
-    if (level > 0) point = level <= static_cast<int>(c.stack.size()) ? c.stack[c.stack.size() - static_cast<std::size_t>(level)] : glm::dvec3(0.0);
+    if (level > 0)
+      point = level <= static_cast<int>(c.stack.size()) ? c.stack[c.stack.size() - static_cast<std::size_t>(level)]
+                                                        : glm::dvec3(0.0);
     std::uint64_t h = mix(mix(o_.seed, hashText(r.name)), level > 0 ? 0 : s.salt);
     for (int a = 0; a < 3; ++a) h = mix(h, static_cast<std::uint64_t>(std::llround(point[a] * 1000.0)));
     return static_cast<double>(h >> 11) * 0x1p-53;
@@ -300,7 +306,8 @@ class Deriver {
       (r.parts[i].relative ? relative : absolute) += sizes.back();
     }
     if (absolute > length * (1 + 1e-9) + 1e-9)
-      return Error{at(r) + "parts of " + metres(absolute) + " do not fit a scope of " + metres(length) + " along " + "xyz"[r.axis]};
+      return Error{at(r) + "parts of " + metres(absolute) + " do not fit a scope of " + metres(length) + " along " +
+                   "xyz"[r.axis]};
     // Relative parts share what the absolute ones leave (the facade paper's equation 1); without
     // any, the absolute ones are stretched to fill the scope.
     const double scaleAbsolute = relative > 0 ? 1.0 : length / absolute;
@@ -330,7 +337,9 @@ class Deriver {
     // The nearest whole number of tiles, halves rounded up also when the division lands a hair
     // below the half (16 - 4.8 is 11.199999999999999 in doubles: 3.5 tiles of 3.2 m are 4).
     const double count = std::max(1.0, std::floor(length / wanted + 0.5 + 1e-9));
-    if (count > kMaxRepeat) return Error{at(r) + "a repeat of " + metres(wanted) + " over " + metres(length) + " makes more than " + std::to_string(kMaxRepeat) + " tiles"};
+    if (count > kMaxRepeat)
+      return Error{at(r) + "a repeat of " + metres(wanted) + " over " + metres(length) + " makes more than " +
+                   std::to_string(kMaxRepeat) + " tiles"};
     const int n = static_cast<int>(count);
     const double pitch = length / n;
     std::vector<std::optional<Piece>> tiles;
@@ -364,7 +373,8 @@ class Deriver {
     for (std::size_t i = 1; i < tiles.size(); ++i) {
       if (!tiles[i]) return std::nullopt;
       const Piece& t = *tiles[i];
-      if (t.kind != first.kind || t.material != first.material || t.node != first.node || t.cube != first.cube || t.wrap != first.wrap)
+      if (t.kind != first.kind || t.material != first.material || t.node != first.node || t.cube != first.cube ||
+          t.wrap != first.wrap)
         return std::nullopt;
       glm::dvec3 step(0.0);
       step[axis] = pitch * static_cast<double>(i);
@@ -372,7 +382,8 @@ class Deriver {
       if (glm::any(glm::greaterThan(glm::abs(t.region.min - expected.min), glm::dvec3(tolerance))) ||
           glm::any(glm::greaterThan(glm::abs(t.region.max - expected.max), glm::dvec3(tolerance))))
         return std::nullopt;
-      if (t.kind == Piece::Kind::Node && glm::any(glm::greaterThan(glm::abs(t.offsetM - first.offsetM - step), glm::dvec3(tolerance))))
+      if (t.kind == Piece::Kind::Node &&
+          glm::any(glm::greaterThan(glm::abs(t.offsetM - first.offsetM - step), glm::dvec3(tolerance))))
         return std::nullopt;
       merged.region = unite(merged.region, t.region);
     }
@@ -444,7 +455,8 @@ class Deriver {
     if (!s.quad) return Error{at(r) + "Intrusion needs a facade (a quad scope); this scope is a mass"};
     const double v = r.depth, w = s.size.x, h = s.size.y;
     if (!(v < s.thickness))
-      return Error{at(r) + "a recess of " + metres(v) + " needs a wall thicker than that; the wall is " + metres(s.thickness) + " (--wall)"};
+      return Error{at(r) + "a recess of " + metres(v) + " needs a wall thicker than that; the wall is " +
+                   metres(s.thickness) + " (--wall)"};
     const double f = std::min({kRecessFaceM, w / 4, h / 4});
     const glm::dvec3 o = s.origin;
     const auto face = [&](int i, double fw, double fh, double thickness) {
@@ -458,11 +470,20 @@ class Deriver {
     const WorldBox all{glm::dvec3(-kInf), glm::dvec3(kInf)};
     const WorldBox between{{f, -kInf, -kInf}, {w - f, kInf, kInf}};
     const std::array<const Part*, 5> p{&r.parts[0], &r.parts[1], &r.parts[2], &r.parts[3], &r.parts[4]};
-    Status st = placeFace(r, p[0]->rule, p[0]->at, face(0, v, h, f), s, c, axesMatrix({0, 0, -1}, {0, 1, 0}, {1, 0, 0}), o + glm::dvec3(f, 0, 0), all, out);
-    if (st) st = placeFace(r, p[1]->rule, p[1]->at, face(1, v, h, f), s, c, axesMatrix({0, 0, 1}, {0, 1, 0}, {-1, 0, 0}), o + glm::dvec3(w - f, 0, -v), all, out);
-    if (st) st = placeFace(r, p[2]->rule, p[2]->at, face(2, w, v, f), s, c, axesMatrix({1, 0, 0}, {0, 0, -1}, {0, 1, 0}), o + glm::dvec3(0, f, 0), between, out);
-    if (st) st = placeFace(r, p[3]->rule, p[3]->at, face(3, w, v, f), s, c, axesMatrix({1, 0, 0}, {0, 0, 1}, {0, -1, 0}), o + glm::dvec3(0, h - f, -v), between, out);
-    if (st) st = placeFace(r, p[4]->rule, p[4]->at, face(4, w, h, s.thickness - v), s, c, IMat3(1), o + glm::dvec3(0, 0, -v), all, out);
+    Status st = placeFace(r, p[0]->rule, p[0]->at, face(0, v, h, f), s, c, axesMatrix({0, 0, -1}, {0, 1, 0}, {1, 0, 0}),
+                          o + glm::dvec3(f, 0, 0), all, out);
+    if (st)
+      st = placeFace(r, p[1]->rule, p[1]->at, face(1, v, h, f), s, c, axesMatrix({0, 0, 1}, {0, 1, 0}, {-1, 0, 0}),
+                     o + glm::dvec3(w - f, 0, -v), all, out);
+    if (st)
+      st = placeFace(r, p[2]->rule, p[2]->at, face(2, w, v, f), s, c, axesMatrix({1, 0, 0}, {0, 0, -1}, {0, 1, 0}),
+                     o + glm::dvec3(0, f, 0), between, out);
+    if (st)
+      st = placeFace(r, p[3]->rule, p[3]->at, face(3, w, v, f), s, c, axesMatrix({1, 0, 0}, {0, 0, 1}, {0, -1, 0}),
+                     o + glm::dvec3(0, h - f, -v), between, out);
+    if (st)
+      st = placeFace(r, p[4]->rule, p[4]->at, face(4, w, h, s.thickness - v), s, c, IMat3(1), o + glm::dvec3(0, 0, -v),
+                     all, out);
     return st;
   }
 
@@ -494,8 +515,10 @@ class Deriver {
       const Face& f = faces[i];
       const Part& part = f.axis == cap ? r.parts[f.side > 0 ? 0 : 1] : r.parts[2];
       WorldBox clip{glm::dvec3(-kInf), glm::dvec3(kInf)};
-      if (f.axis == cap) clip = {{t, t, -kInf}, {f.width - t, f.height - t, kInf}};
-      else if (f.axis != owner) clip = {{t, -kInf, -kInf}, {f.width - t, kInf, kInf}};
+      if (f.axis == cap)
+        clip = {{t, t, -kInf}, {f.width - t, f.height - t, kInf}};
+      else if (f.axis != owner)
+        clip = {{t, -kInf, -kInf}, {f.width - t, kInf, kInf}};
       Scope q;
       q.size = {f.width, f.height, 0};
       q.thickness = t;
@@ -521,7 +544,8 @@ class Deriver {
     box.capAxis = 1;
     const IMat3 upright = axesMatrix({1, 0, 0}, {0, 0, 1}, {0, -1, 0});
     const WorldBox all{glm::dvec3(-kInf), glm::dvec3(kInf)};
-    return placeFace(r, r.parts[0].rule, r.parts[0].at, box, s, c, upright, s.origin + glm::dvec3(0, s.size.y, 0), all, out);
+    return placeFace(r, r.parts[0].rule, r.parts[0].at, box, s, c, upright, s.origin + glm::dvec3(0, s.size.y, 0), all,
+                     out);
   }
 
   // The pieces of one rule application, built in a frame with its origin at `origin` and turned
@@ -556,7 +580,8 @@ class Deriver {
       if (p.kind == Piece::Kind::Node) p.offsetM -= bounds.min;
       node.pieces.push_back(std::move(p));
     }
-    return std::optional<Piece>{intern(std::move(node), turned(bounds, m, origin), origin + glm::dvec3(glm::dmat3(m) * bounds.min), cube)};
+    return std::optional<Piece>{
+        intern(std::move(node), turned(bounds, m, origin), origin + glm::dvec3(glm::dmat3(m) * bounds.min), cube)};
   }
 
   // Two pieces whose regions share volume, if any: a sweep along the axis where the pieces start
@@ -573,12 +598,14 @@ class Deriver {
     }
     std::vector<std::size_t> order(pieces.size());
     for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
-    std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return pieces[a].region.min[axis] < pieces[b].region.min[axis]; });
+    std::sort(order.begin(), order.end(),
+              [&](std::size_t a, std::size_t b) { return pieces[a].region.min[axis] < pieces[b].region.min[axis]; });
     for (std::size_t i = 0; i < order.size(); ++i)
       for (std::size_t j = i + 1; j < order.size(); ++j) {
         const WorldBox &a = pieces[order[i]].region, &b = pieces[order[j]].region;
         if (b.min[axis] >= a.max[axis] - kOverlapM) break;
-        if (hasVolume(intersect(a, b))) return std::make_pair(std::min(order[i], order[j]), std::max(order[i], order[j]));
+        if (hasVolume(intersect(a, b)))
+          return std::make_pair(std::min(order[i], order[j]), std::max(order[i], order[j]));
       }
     return std::nullopt;
   }
@@ -600,7 +627,9 @@ class Deriver {
     Material out;
     std::string name;
     if (m.texture == 0 && m.textureName.empty()) {
-      const auto byte = [](double v) { return static_cast<std::uint8_t>(std::lround(std::clamp(v, 0.0, 1.0) * 255.0)); };
+      const auto byte = [](double v) {
+        return static_cast<std::uint8_t>(std::lround(std::clamp(v, 0.0, 1.0) * 255.0));
+      };
       out = {byte(m.values[0]), byte(m.values[1]), byte(m.values[2]), byte(m.values[3]), 0};
       if (out.opacity == 0) out.opacity = 1;  // a fully clear colour would be no colour at all; keep a trace
       name = r.name;
@@ -616,7 +645,8 @@ class Deriver {
   Result<std::uint16_t> addMaterial(const Material& m, const std::string& name) {
     const auto key = std::make_pair(name, std::array<int, 5>{m.r, m.g, m.b, m.opacity, m.reflectance});
     if (auto it = materialIndex_.find(key); it != materialIndex_.end()) return it->second;
-    if (d_.materials.size() >= kMaxMeshMaterials) return Error{"more than " + std::to_string(kMaxMeshMaterials) + " materials"};
+    if (d_.materials.size() >= kMaxMeshMaterials)
+      return Error{"more than " + std::to_string(kMaxMeshMaterials) + " materials"};
     const auto index = static_cast<std::uint16_t>(d_.materials.size());
     d_.materials.push_back(m);
     d_.materialNames.push_back(name);
@@ -631,7 +661,8 @@ class Deriver {
   }
   static std::string describe(const WorldBox& b) {
     char text[160];
-    std::snprintf(text, sizeof text, "[%.3g, %.3g] x [%.3g, %.3g] x [%.3g, %.3g]", b.min.x, b.max.x, b.min.y, b.max.y, b.min.z, b.max.z);
+    std::snprintf(text, sizeof text, "[%.3g, %.3g] x [%.3g, %.3g] x [%.3g, %.3g]", b.min.x, b.max.x, b.min.y, b.max.y,
+                  b.min.z, b.max.z);
     return text;
   }
 
@@ -657,13 +688,14 @@ Material namedMaterial(const std::string& name) {
     int r, g, b;
   };
   // The first word the name contains picks the tone; order matters ("WindowWall" is a wall).
-  static const Tone tones[] = {
-      {"wall", 214, 198, 170}, {"column", 196, 184, 160}, {"side", 214, 198, 170}, {"window", 64, 88, 118},
-      {"glass", 90, 130, 160}, {"door", 112, 72, 46},     {"roof", 150, 70, 55},   {"top", 120, 118, 112},
-      {"balcony", 178, 178, 184}, {"ledge", 232, 226, 214}, {"cornice", 232, 226, 214}, {"ground", 150, 140, 130},
-      {"air", 190, 195, 200},  {"tower", 170, 160, 150}};
+  static const Tone tones[] = {{"wall", 214, 198, 170},  {"column", 196, 184, 160},  {"side", 214, 198, 170},
+                               {"window", 64, 88, 118},  {"glass", 90, 130, 160},    {"door", 112, 72, 46},
+                               {"roof", 150, 70, 55},    {"top", 120, 118, 112},     {"balcony", 178, 178, 184},
+                               {"ledge", 232, 226, 214}, {"cornice", 232, 226, 214}, {"ground", 150, 140, 130},
+                               {"air", 190, 195, 200},   {"tower", 170, 160, 150}};
   const std::uint64_t h = hashText(name);
-  int r = 80 + static_cast<int>(h % 150), g = 80 + static_cast<int>((h >> 8) % 150), b = 80 + static_cast<int>((h >> 16) % 150);
+  int r = 80 + static_cast<int>(h % 150), g = 80 + static_cast<int>((h >> 8) % 150),
+      b = 80 + static_cast<int>((h >> 16) % 150);
   for (const Tone& t : tones)
     if (contains(name, t.word)) {
       // Names of one kind (Wall1, Wall2) differ by a shade, so variants stay visible.

@@ -15,8 +15,8 @@ namespace nut::grammar {
 struct CompiledGrammar {
   Derivation derivation;
   Hierarchy hierarchy;
-  Image image;                  // the HNI
-  glm::dvec3 originM{0.0};      // world position of the root block's corner (HniText::originM)
+  Image image;              // the HNI
+  glm::dvec3 originM{0.0};  // world position of the root block's corner (HniText::originM)
   double deriveSeconds = 0, compileSeconds = 0;
 };
 

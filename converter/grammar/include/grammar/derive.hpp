@@ -36,35 +36,35 @@ using NodeId = std::uint32_t;
 struct Piece {
   enum class Kind : std::uint8_t { Box, Node };
   Kind kind = Kind::Box;
-  WorldBox region;               // Box: the solid; Node: what of the placed node shows (its clip)
-  std::uint16_t material = 0;    // Box: index into Derivation::materials
-  NodeId node = 0;               // Node: placed with its frame's origin at offsetM, turned by the
-  glm::dvec3 offsetM{0.0};       //   cube rotation `cube` (hierarchy.hpp), and tiled along the
-  int cube = 0;                  //   node's axes whose `wrap` is set (all zero for a box, so that
-                                 //   alike boxes compare equal wherever they were made)
+  WorldBox region;             // Box: the solid; Node: what of the placed node shows (its clip)
+  std::uint16_t material = 0;  // Box: index into Derivation::materials
+  NodeId node = 0;             // Node: placed with its frame's origin at offsetM, turned by the
+  glm::dvec3 offsetM{0.0};     //   cube rotation `cube` (hierarchy.hpp), and tiled along the
+  int cube = 0;                //   node's axes whose `wrap` is set (all zero for a box, so that
+                               //   alike boxes compare equal wherever they were made)
   std::array<bool, 3> wrap{};
   friend bool operator==(const Piece&, const Piece&) = default;
 };
 
 struct Node {
-  glm::dvec3 sizeM{0.0};         // the frame spans [0, sizeM]
+  glm::dvec3 sizeM{0.0};  // the frame spans [0, sizeM]
   std::vector<Piece> pieces;
   friend bool operator==(const Node&, const Node&) = default;
 };
 
 struct Derivation {
-  std::vector<Node> nodes;       // a node's pieces name only nodes before it
-  Piece root;                    // in world metres: the start scope's corner is the world origin
+  std::vector<Node> nodes;  // a node's pieces name only nodes before it
+  Piece root;               // in world metres: the start scope's corner is the world origin
   std::vector<Material> materials;
   std::vector<std::string> materialNames;  // parallel: the rule or texture each comes from
-  long long shapes = 0;          // rule applications
+  long long shapes = 0;                    // rule applications
 };
 
 struct DeriveOptions {
   std::uint64_t seed = 0;
-  std::optional<glm::dvec3> sizeM;   // the start scope; z = 0 for a facade. Default: the file's @size
-  double wallM = 0.3;                // thickness of a facade's slab and of a mass's walls
-  long long maxShapes = 2'000'000;   // a grammar that derives more is refused, naming the rule
+  std::optional<glm::dvec3> sizeM;  // the start scope; z = 0 for a facade. Default: the file's @size
+  double wallM = 0.3;               // thickness of a facade's slab and of a mass's walls
+  long long maxShapes = 2'000'000;  // a grammar that derives more is refused, naming the rule
 };
 
 // Applies g from its start rule. Errors name the rule and its line: a size that cannot fit its
