@@ -19,7 +19,7 @@ namespace nut::cli {
 namespace {
 
 struct GrammarCliOptions {
-  std::string input, output, start, size, mesh, report;
+  std::string input, output, start, size, mesh, report, meshFaces = "solid";
   std::uint64_t seed = 0;
   double wallM = 0.3;
   bool quiet = false;
@@ -61,7 +61,8 @@ int run(const GrammarCliOptions& o) {
 
   std::size_t triangles = 0;
   if (!o.mesh.empty()) {
-    auto mesh = grammar::derivationMesh(compiled->derivation);
+    auto mesh = grammar::derivationMesh(
+        compiled->derivation, o.meshFaces == "fronts" ? grammar::MeshFaces::Fronts : grammar::MeshFaces::Solid);
     if (!mesh) return fail(o.input + ": " + mesh.error().message, kInvalid);
     mesh->name = hniText.name;
     triangles = mesh->triangles.size();
@@ -84,7 +85,7 @@ int run(const GrammarCliOptions& o) {
                              {"image", {stats.width, stats.height}},
                              {"png_bytes", pngBytes},
                              {"seconds", {{"derive", compiled->deriveSeconds}, {"compile", compiled->compileSeconds}}}};
-    if (!o.mesh.empty()) report["mesh"] = {{"file", o.mesh}, {"triangles", triangles}};
+    if (!o.mesh.empty()) report["mesh"] = {{"file", o.mesh}, {"faces", o.meshFaces}, {"triangles", triangles}};
     if (Status s = writeTextFile(o.report, report.dump(2) + "\n"); !s) return fail(s.error().message, kUnreadable);
   }
   if (!o.quiet)
@@ -113,6 +114,11 @@ void addGrammarCommand(CLI::App& app, int& exitCode) {
       ->check(CLI::Range(0.01, 10.0));
   cmd->add_option("--mesh", o->mesh, "Also write the derivation's own geometry as OBJ + MTL (the reference)")
       ->check(outputExtension(".obj", "OBJ"));
+  cmd->add_option("--mesh-faces", o->meshFaces,
+                  "solid: every box closed (what the HNI shows); fronts: a facade's terminal as its front quad, as a "
+                  "shape-grammar system emits it")
+      ->check(CLI::IsMember({"solid", "fronts"}))
+      ->capture_default_str();
   cmd->add_option("--report", o->report, "Write a JSON report (shapes, blocks, bytes, timings)")
       ->check(outputExtension(".json", "JSON"));
   cmd->add_flag("--quiet", o->quiet, "No summary on stderr");

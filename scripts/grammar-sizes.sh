@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # The size table of docs/GRAMMAR.md: every sample grammar compiled (seed 0) to an HNI and to the
-# derivation's own mesh, and that mesh packed the way a user would ship it: gltfpack -cc (the
+# derivation's own meshes (solid: what the HNI shows; fronts: a quad per facade terminal, as a
+# shape-grammar system emits), each packed the way a user would ship it: gltfpack -cc (the
 # meshoptimizer project's packer, from npm) and gzip -9.
 #   scripts/grammar-sizes.sh [BUILD]        (BUILD: the build folder, default build)
 # Installs gltfpack into .tools/ with npm on first use.
@@ -14,21 +15,27 @@ if [ ! -x "$gltfpack" ]; then
 fi
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
-echo "| sample | shapes | blocks | HNI raw | HNI PNG | triangles | OBJ + MTL | gltfpack -cc | + gzip -9 | PNG / (gltfpack + gzip) |"
-echo "|---|---|---|---|---|---|---|---|---|---|"
+echo "| sample | shapes | blocks | HNI raw | HNI PNG | solid: triangles | OBJ + MTL | gltfpack -cc | + gzip -9 | fronts: triangles | gltfpack -cc + gzip -9 | PNG / fronts |"
+echo "|---|---|---|---|---|---|---|---|---|---|---|---|"
 for grammar in "$root"/samples/grammars/*.grammar; do
   name=$(basename "$grammar" .grammar)
   "$root/$build/cli/nut" grammar "$grammar" -o "$work/$name.png" --mesh "$work/$name.obj" --report "$work/$name.json" --quiet
-  "$gltfpack" -i "$work/$name.obj" -o "$work/$name.glb" -cc >/dev/null
-  gzip -9 -c "$work/$name.glb" > "$work/$name.glb.gz"
+  "$root/$build/cli/nut" grammar "$grammar" -o "$work/$name.fronts.png" --mesh "$work/$name.fronts.obj" \
+    --mesh-faces fronts --report "$work/$name.fronts.json" --quiet
+  for mesh in "$name" "$name.fronts"; do
+    "$gltfpack" -i "$work/$mesh.obj" -o "$work/$mesh.glb" -cc >/dev/null
+    gzip -9 -c "$work/$mesh.glb" > "$work/$mesh.glb.gz"
+  done
   python3 - "$name" "$work" <<'PY'
 import json, os, sys
 name, work = sys.argv[1], sys.argv[2]
 r = json.load(open(f"{work}/{name}.json"))
 size = lambda p: os.path.getsize(f"{work}/{p}")
-png, gz = r["png_bytes"], size(f"{name}.glb.gz")
+fronts = json.load(open(f"{work}/{name}.fronts.json"))
+png, gz, frontsGz = r["png_bytes"], size(f"{name}.glb.gz"), size(f"{name}.fronts.glb.gz")
 raw = r["image"][0] * r["image"][1] * 4
 print(f"| {name} | {r['shapes']:,} | {r['blocks']} | {raw:,} | {png:,} | {r['mesh']['triangles']:,} | "
-      f"{size(name + '.obj') + size(name + '.mtl'):,} | {size(name + '.glb'):,} | {gz:,} | {png / gz:.2f} |")
+      f"{size(name + '.obj') + size(name + '.mtl'):,} | {size(name + '.glb'):,} | {gz:,} | "
+      f"{fronts['mesh']['triangles']:,} | {frontsGz:,} | {png / frontsGz:.2f} |")
 PY
 done

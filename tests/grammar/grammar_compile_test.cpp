@@ -297,6 +297,31 @@ TEST(GrammarCompile, AnIntrusionIsARecessOfItsDepth) {
   EXPECT_NE(back.colour, wall.colour);
 }
 
+// The fronts mesh has two triangles per facade terminal. The simple house (4 x 6 x 4 m, 0.3 m
+// walls): six floors of eight tiles of five quads on each side, but the two sides between the
+// front and back walls are clipped to [0.3, 3.7] m, which drops the outer wall strip of the first
+// and the last tile on every floor (38 quads a floor there); and one roof and one floor quad.
+TEST(GrammarCompile, TheFrontsMeshHasTwoTrianglesPerFacadeTerminal) {
+  auto g = readGrammar(samplePath("pga_simple_house"));
+  ASSERT_TRUE(g) << g.error().message;
+  auto c = compileGrammar(*g);
+  ASSERT_TRUE(c) << c.error().message;
+  auto fronts = derivationMesh(c->derivation, MeshFaces::Fronts);
+  ASSERT_TRUE(fronts) << fronts.error().message;
+  const int quads = 2 * 6 * 40 + 2 * 6 * 38 + 2;
+  EXPECT_EQ(fronts->triangles.size(), 2u * quads);
+  auto solid = derivationMesh(c->derivation);
+  ASSERT_TRUE(solid);
+  EXPECT_GT(solid->triangles.size(), fronts->triangles.size());
+  // Every front faces out of the house: its normal points away from the house's centre.
+  const glm::dvec3 centre(2, 3, 2);
+  for (const auto& t : fronts->triangles) {
+    const glm::dvec3 a = fronts->positions[t[0]], b = fronts->positions[t[1]], d = fronts->positions[t[2]];
+    const glm::dvec3 normal = glm::cross(b - a, d - a);
+    EXPECT_GT(glm::dot(normal, (a + b + d) / 3.0 - centre), 0.0);
+  }
+}
+
 TEST(GrammarCompile, DerivationErrorsNameTheRule) {
   const struct {
     std::string text, message;

@@ -83,7 +83,8 @@ Status checkGrammar(Grammar& g, const std::string& start, const Position& startA
       std::string list;
       for (const Rule* r : candidates)
         list += (list.empty() ? "" : ", ") + r->name + " (line " + std::to_string(r->at.line) + ")";
-      return Error{g.file + ": several rules are named by no other: " + list + "; choose the start with @start or --start"};
+      return Error{g.file + ": several rules are named by no other: " + list +
+                   "; choose the start with @start or --start"};
     }
     g.start = candidates.front()->name;
   }
@@ -99,7 +100,8 @@ Status checkGrammar(Grammar& g, const std::string& start, const Position& startA
       const std::vector<const Rule*> loop = loopFrom(g, r, ends);
       std::string names;
       for (const Rule* l : loop) names += (names.empty() ? "" : " -> ") + l->name;
-      return Error{where(g.file, loop.front()->at) + "rule '" + loop.front()->name + "' never reaches a terminal (" + names + ")"};
+      return Error{where(g.file, loop.front()->at) + "rule '" + loop.front()->name + "' never reaches a terminal (" +
+                   names + ")"};
     }
     for (const Part& p : r->parts)
       if (byName.count(p.rule) && reached.insert(p.rule).second) stack.push_back(p.rule);

@@ -10,31 +10,19 @@
 
 #include <glm/mat3x3.hpp>
 
+#include "box_frames.hpp"
+
 namespace nut::grammar {
 
 namespace {
 
 constexpr std::size_t kMaxBoxes = 5'000'000;  // 60 M triangles before culling: refused instead
 
-using IMat3 = glm::mat<3, 3, int>;
-
 struct SolidBox {
   WorldBox box;
   std::uint16_t material = 0;
+  int front = -1;  // the world side a facade's terminal shows (Piece::front), -1 for a mass's box
 };
-
-WorldBox turned(const WorldBox& b, const IMat3& r, const glm::dvec3& offset) {
-  const glm::dmat3 m(r);
-  const glm::dvec3 a = m * b.min, c = m * b.max;
-  return {offset + glm::min(a, c), offset + glm::max(a, c)};
-}
-
-IMat3 transposed(const IMat3& m) {  // the inverse of a rotation; glm's transpose takes floats only
-  IMat3 t;
-  for (int i = 0; i < 3; ++i)
-    for (int j = 0; j < 3; ++j) t[i][j] = m[j][i];
-  return t;
-}
 
 bool hasVolume(const WorldBox& b) { return b.max.x > b.min.x && b.max.y > b.min.y && b.max.z > b.min.z; }
 
@@ -46,7 +34,7 @@ Status collect(const Derivation& d, const Piece& p, const IMat3& r, const glm::d
   if (!hasVolume(shown)) return Ok{};
   if (p.kind == Piece::Kind::Box) {
     if (out.size() >= kMaxBoxes) return Error{"the derivation has more than " + std::to_string(kMaxBoxes) + " boxes"};
-    out.push_back({shown, p.material});
+    out.push_back({shown, p.material, turnedSide(p.front, r)});
     return Ok{};
   }
   const Node& node = d.nodes.at(p.node);
@@ -78,7 +66,7 @@ using FaceKey = std::tuple<int, double, double, double, double, double>;  // axi
 
 }  // namespace
 
-Result<TriangleMesh> derivationMesh(const Derivation& d) {
+Result<TriangleMesh> derivationMesh(const Derivation& d, MeshFaces faces) {
   std::vector<SolidBox> boxes;
   const WorldBox everywhere{glm::dvec3(-HUGE_VAL), glm::dvec3(HUGE_VAL)};
   if (Status s = collect(d, d.root, IMat3(1), glm::dvec3(0.0), everywhere, boxes); !s) return s.error();
@@ -108,6 +96,7 @@ Result<TriangleMesh> derivationMesh(const Derivation& d) {
     const bool opaque = d.materials[b.material].opacity == 255;
     for (int axis = 0; axis < 3; ++axis)
       for (int side : {-1, 1}) {
+        if (faces == MeshFaces::Fronts && b.front >= 0 && b.front != 2 * axis + (side > 0 ? 0 : 1)) continue;
         if (opaque) {
           const auto& count = sides.at(keyOf(b.box, axis, side));
           if (count[0] == 1 && count[1] == 1) continue;  // an inner face of two touching boxes

@@ -12,6 +12,8 @@
 
 #include <glm/mat3x3.hpp>
 
+#include "box_frames.hpp"
+
 namespace nut::grammar {
 
 namespace {
@@ -21,31 +23,16 @@ constexpr double kOverlapM = 1e-7;     // pieces may touch; sharing more than th
 constexpr double kRecessFaceM = 0.05;  // thickness of a recess's side, floor and ceiling
 constexpr long long kMaxRepeat = 100'000;
 
-using IMat3 = glm::mat<3, 3, int>;
-
 bool hasVolume(const WorldBox& b) {
   return b.max.x - b.min.x > kOverlapM && b.max.y - b.min.y > kOverlapM && b.max.z - b.min.z > kOverlapM;
 }
 WorldBox intersect(const WorldBox& a, const WorldBox& b) { return {glm::max(a.min, b.min), glm::min(a.max, b.max)}; }
 WorldBox unite(const WorldBox& a, const WorldBox& b) { return {glm::min(a.min, b.min), glm::max(a.max, b.max)}; }
 WorldBox shifted(const WorldBox& b, const glm::dvec3& d) { return {b.min + d, b.max + d}; }
-// The box turned by a cube rotation and moved: still axis-aligned.
-WorldBox turned(const WorldBox& b, const IMat3& r, const glm::dvec3& offset) {
-  const glm::dmat3 m(r);
-  const glm::dvec3 a = m * b.min, c = m * b.max;
-  return {offset + glm::min(a, c), offset + glm::max(a, c)};
-}
-
 int cubeIndexOf(const IMat3& m) {
   for (int i = 0; i < 24; ++i)
     if (cubeRotationMatrix(i) == m) return i;
   return -1;
-}
-IMat3 transposed(const IMat3& m) {  // a rotation's inverse; glm's transpose takes floats only
-  IMat3 t;
-  for (int i = 0; i < 3; ++i)
-    for (int j = 0; j < 3; ++j) t[i][j] = m[j][i];
-  return t;
 }
 IMat3 axesMatrix(const glm::ivec3& x, const glm::ivec3& y, const glm::ivec3& z) { return IMat3(x, y, z); }
 
@@ -247,13 +234,13 @@ class Deriver {
         if (r.material.usage != Usage::Color) return skip(s, c, 0, out);  // a normal or specular map only
         auto m = material(r);
         if (!m) return m.error();
-        out.push_back({Piece::Kind::Box, s.solid(), *m});
+        out.push_back(terminal(s, *m));
         return Ok{};
       }
       case Op::Generate: {
         auto m = addMaterial(namedMaterial(r.name), r.name);
         if (!m) return Error{at(r) + m.error().message};
-        out.push_back({Piece::Kind::Box, s.solid(), *m});
+        out.push_back(terminal(s, *m));
         return Ok{};
       }
       case Op::Discard: return Ok{};
@@ -270,6 +257,13 @@ class Deriver {
       }
     }
     return Ok{};
+  }
+
+  // A terminal: the scope's solid in one material; a facade's shows its +z side.
+  static Piece terminal(const Scope& s, std::uint16_t material) {
+    Piece p{Piece::Kind::Box, s.solid(), material};
+    if (s.quad) p.front = 4;
+    return p;
   }
 
   // A uniform value in [0, 1): the seed, the rule, and the seed point the level names (0: this
@@ -565,6 +559,7 @@ class Deriver {
     const IMat3 m = cubeRotationMatrix(cube);
     if (kept.size() == 1 && kept[0].kind == Piece::Kind::Box) {
       kept[0].region = turned(kept[0].region, m, origin);
+      kept[0].front = static_cast<std::int8_t>(turnedSide(kept[0].front, m));
       return std::optional<Piece>{kept[0]};
     }
     if (kept.size() == 1 && cube == 0) {

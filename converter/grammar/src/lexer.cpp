@@ -54,12 +54,14 @@ Result<std::vector<Token>> tokenize(std::string_view text, const std::string& fi
       const char* begin = text.data() + i + sign;
       const auto [end, ec] = std::from_chars(begin, text.data() + text.size(), value);
       if (ec != std::errc() || !std::isfinite(value))
-        return Error{where(file, at) + "'" + std::string(text.substr(i, static_cast<std::size_t>(end - text.data()) - i + 1)) +
+        return Error{where(file, at) + "'" +
+                     std::string(text.substr(i, static_cast<std::size_t>(end - text.data()) - i + 1)) +
                      "' is not a finite number"};
       std::size_t length = static_cast<std::size_t>(end - (text.data() + i));
       const bool relative = i + length < text.size() && text[i + length] == 'r' &&
                             (i + length + 1 == text.size() || !isWordChar(text[i + length + 1]));
-      Token token{Token::Kind::Number, std::string(text.substr(i, length + (relative ? 1 : 0))), value, relative, 0, at};
+      Token token{
+          Token::Kind::Number, std::string(text.substr(i, length + (relative ? 1 : 0))), value, relative, 0, at};
       if (i + length + (relative ? 1 : 0) < text.size() && isWordChar(text[i + length + (relative ? 1 : 0)]))
         return Error{where(file, at) + "'" + token.text + text[i + length + (relative ? 1 : 0)] +
                      "...' is not a number (a rule name starts with a letter)"};

@@ -186,8 +186,9 @@ class Parser {
       if (!items.empty())
         if (Status s = expect(','); !s) return s.error();
       Item item;
-      const bool hasValue = peek().kind == Token::Kind::Number || isPunct('(') ||
-                            (peek().kind == Token::Kind::Word && (isPunct(':', 1) || (peek().text == "Rand" && isPunct('(', 1))));
+      const bool hasValue =
+          peek().kind == Token::Kind::Number || isPunct('(') ||
+          (peek().kind == Token::Kind::Word && (isPunct(':', 1) || (peek().text == "Rand" && isPunct('(', 1))));
       if (hasValue) {
         auto value = braceValue();
         if (!value) return value.error();
@@ -259,7 +260,8 @@ class Parser {
       r.op = Op::Split;
       r.axis = o.back() == 'X' ? 0 : 1;
       if (args.empty() || args.size() % 3 != 0)
-        return error(op.at, o + " takes triples (Abs|Rel, size, Rule), found " + std::to_string(args.size()) + " parameters");
+        return error(op.at,
+                     o + " takes triples (Abs|Rel, size, Rule), found " + std::to_string(args.size()) + " parameters");
       for (std::size_t i = 0; i < args.size(); i += 3) {
         const Arg& policy = args[i];
         const bool abs = policy.kind == Arg::Kind::Word && policy.word == "Abs";
@@ -296,7 +298,8 @@ class Parser {
       if (!level) return level.error();
       r.level = *level;
       const bool weighted = o == "Rand";
-      if (weighted && (args.size() - 1) % 2 != 0) return error(op.at, "Rand takes (level, weight, Rule, weight, Rule, ...)");
+      if (weighted && (args.size() - 1) % 2 != 0)
+        return error(op.at, "Rand takes (level, weight, Rule, weight, Rule, ...)");
       double sum = 0;
       for (std::size_t i = 1; i < args.size(); i += weighted ? 2 : 1) {
         double weight = 1.0 / static_cast<double>(args.size() - 1);  // RandUni
@@ -311,7 +314,8 @@ class Parser {
         r.parts.back().size = {weight, weight};
         sum += weight;
       }
-      if (weighted && std::abs(sum - 1.0) > 1e-6) return error(op.at, "Rand's weights add up to " + std::to_string(sum) + ", not 1");
+      if (weighted && std::abs(sum - 1.0) > 1e-6)
+        return error(op.at, "Rand's weights add up to " + std::to_string(sum) + ", not 1");
       return Ok{};
     }
     if (o == "RandStack") {
@@ -351,24 +355,30 @@ class Parser {
       return rulesFrom(r, std::vector<Arg>(args.begin() + 1, args.end()));
     }
     if (o == "Mat" || o == "MatAlpha") return material(r, op, args);
-    return error(op.at, "unknown operator '" + o + "' in the call form (SplitX, SplitY, RepeatX, RepeatY, Rand, RandUni, "
-                        "RandStack, Layer, Skip, SkipMask, Intrusion, Mat, MatAlpha)");
+    return error(op.at, "unknown operator '" + o +
+                            "' in the call form (SplitX, SplitY, RepeatX, RepeatY, Rand, RandUni, "
+                            "RandStack, Layer, Skip, SkipMask, Intrusion, Mat, MatAlpha)");
   }
 
   Status material(Rule& r, const Token& op, const std::vector<Arg>& args) {
     const bool alpha = op.text == "MatAlpha";
     const std::size_t n = alpha ? 11 : 6;
     if (args.size() != n)
-      return error(op.at, op.text + " takes " + std::to_string(n) + " parameters, found " + std::to_string(args.size()));
+      return error(op.at,
+                   op.text + " takes " + std::to_string(n) + " parameters, found " + std::to_string(args.size()));
     r.op = Op::Material;
     MaterialSpec& m = r.material;
     const Arg& usage = args[0];
-    if (usage.kind == Arg::Kind::Word && (usage.word == "Color" || usage.word == "Colour")) m.usage = Usage::Color;
-    else if (usage.kind == Arg::Kind::Word && usage.word == "Normal") m.usage = Usage::Normal;
-    else if (usage.kind == Arg::Kind::Word && usage.word == "Specular") m.usage = Usage::Specular;
+    if (usage.kind == Arg::Kind::Word && (usage.word == "Color" || usage.word == "Colour"))
+      m.usage = Usage::Color;
+    else if (usage.kind == Arg::Kind::Word && usage.word == "Normal")
+      m.usage = Usage::Normal;
+    else if (usage.kind == Arg::Kind::Word && usage.word == "Specular")
+      m.usage = Usage::Specular;
     else if (usage.kind == Arg::Kind::Number && (usage.number == 1 || usage.number == 2 || usage.number == 3))
       m.usage = static_cast<Usage>(static_cast<int>(usage.number) - 1);
-    else return error(usage.at, "expected Color, Normal or Specular (or 1, 2, 3)");
+    else
+      return error(usage.at, "expected Color, Normal or Specular (or 1, 2, 3)");
     const Arg& texture = args[1];
     if (texture.kind == Arg::Kind::Texture) {
       const bool rep = texture.texturePrefix == "Rep" && texture.textureMode == ':';
@@ -427,7 +437,8 @@ class Parser {
       r.shape = items[0].rule == "Quad" ? Shape::Quad : Shape::Box;
       return Ok{};
     }
-    if (o == "SubdivideX" || o == "SubdivideY" || o == "SubdivideZ" || o == "RepeatX" || o == "RepeatY" || o == "RepeatZ") {
+    if (o == "SubdivideX" || o == "SubdivideY" || o == "SubdivideZ" || o == "RepeatX" || o == "RepeatY" ||
+        o == "RepeatZ") {
       const bool repeat = o[0] == 'R';
       r.op = repeat ? Op::Repeat : Op::Split;
       r.axis = o.back() - 'X';
@@ -435,7 +446,8 @@ class Parser {
         return error(op.at, o + (repeat ? " takes one {size : Rule}" : " takes {size : Rule, ...}"));
       for (const Item& item : items) {
         if (!item.value || (item.value->kind != Arg::Kind::Number && item.value->kind != Arg::Kind::Range))
-          return error(item.ruleAt, o + " needs a size before each rule (1.5 : Rule, 2r : Rule or Rand(lo, hi) : Rule)");
+          return error(item.ruleAt,
+                       o + " needs a size before each rule (1.5 : Rule, 2r : Rule or Rand(lo, hi) : Rule)");
         const Arg& v = *item.value;
         if (!(v.number > 0)) return error(v.at, "a size must be positive");
         if (repeat && v.relative) return error(v.at, "a repeat size is in metres, not relative");
@@ -471,8 +483,8 @@ class Parser {
     }
     if (o == "Extrude" || o == "ExtrudeZ") {  // the thesis's complex house writes ExtrudeZ
       r.op = Op::Extrude;
-      if (items.size() != 1 || !items[0].value || items[0].value->kind != Arg::Kind::Number || items[0].value->relative ||
-          !(items[0].value->number > 0))
+      if (items.size() != 1 || !items[0].value || items[0].value->kind != Arg::Kind::Number ||
+          items[0].value->relative || !(items[0].value->number > 0))
         return error(op.at, "Extrude takes {depth : Rule} with a positive depth in metres");
       r.parts.push_back({items[0].rule, items[0].ruleAt, false, {items[0].value->number, items[0].value->number}});
       return Ok{};
@@ -491,8 +503,9 @@ class Parser {
       r.op = o == "Layer" ? Op::Layer : Op::RandStack;
       return rulesOnly(o == "Layer" ? 0 : 1);
     }
-    return error(op.at, "unknown operator '" + o + "' in the brace form (Generate, SubdivideX/Y/Z, RepeatX/Y/Z, RandomRule, "
-                        "ComponentSplit, Extrude, ExtrudeZ, Translate, Scale, Layer, RandStack)");
+    return error(op.at, "unknown operator '" + o +
+                            "' in the brace form (Generate, SubdivideX/Y/Z, RepeatX/Y/Z, RandomRule, "
+                            "ComponentSplit, Extrude, ExtrudeZ, Translate, Scale, Layer, RandStack)");
   }
 
   Status fromBare(Rule& r, const Token& op) {
@@ -557,7 +570,8 @@ Result<Grammar> parseGrammar(const std::string& text, const std::string& file, c
   Parser parser(std::move(*tokens), file);
   auto grammar = parser.run();
   if (!grammar) return grammar.error();
-  if (Status s = checkGrammar(*grammar, start.empty() ? parser.fileStart() : start, parser.fileStartAt()); !s) return s.error();
+  if (Status s = checkGrammar(*grammar, start.empty() ? parser.fileStart() : start, parser.fileStartAt()); !s)
+    return s.error();
   return grammar;
 }
 

@@ -43,6 +43,9 @@ struct Piece {
   int cube = 0;                //   node's axes whose `wrap` is set (all zero for a box, so that
                                //   alike boxes compare equal wherever they were made)
   std::array<bool, 3> wrap{};
+  // Box: the side a facade's terminal shows, 2 * axis + (0 for +, 1 for -) in this frame (the
+  // order of VisualSummary); -1 for a mass's box, which shows every side.
+  std::int8_t front = -1;
   friend bool operator==(const Piece&, const Piece&) = default;
 };
 
@@ -77,9 +80,15 @@ Result<Derivation> derive(const Grammar& g, const DeriveOptions& options = {});
 // itself so that Wall1 and Wall2 differ.
 Material namedMaterial(const std::string& name);
 
-// The derivation as triangles: every solid box, with the faces two opaque boxes share removed.
-// This is the geometry a CGA-style system would emit, and the reference the HNI is compared with.
-Result<TriangleMesh> derivationMesh(const Derivation& d);
+enum class MeshFaces {
+  Solid,   // every box closed, but for the faces two opaque boxes share: what the HNI shows
+  Fronts,  // a facade's terminal as its front face only (two triangles), a mass's box whole:
+           // what a CGA-style system emits for Generate {Quad}
+};
+
+// The derivation as triangles. Solid is the reference the HNI is compared with; Fronts is the
+// lighter geometry a shape-grammar system would emit, the peer for sizes.
+Result<TriangleMesh> derivationMesh(const Derivation& d, MeshFaces faces = MeshFaces::Solid);
 
 // The derivation as a NUT hierarchy: a block per node (its grid the union of its pieces'
 // boundaries), boxes as solid cells, placed nodes as redirections, then the shared passes that fit
