@@ -127,7 +127,7 @@ int runsOf(const CompiledGrammar& c, const std::array<std::uint8_t, 3>& colour, 
   return runs;
 }
 
-// Windows counted along rows and columns of the front of each sample, against counts worked out by
+// Windows counted along rows and columns of the front of five samples, against counts worked out by
 // hand from each grammar's sizes (seed 0). The window colour is read at one window's centre.
 TEST(GrammarCompile, EverySampleHasTheWindowsItsSizesSay) {
   struct Line {
@@ -157,6 +157,10 @@ TEST(GrammarCompile, EverySampleHasTheWindowsItsSizesSay) {
       {"gbef_m2",
        {1.333, 6.306},
        {{{0.01, 6.306}, {15.99, 6.306}, 6}, {{0.01, 2.1}, {15.99, 2.1}, 4}, {{1.333, 4.6}, {1.333, 18.9}, 4}}},
+      // 20 x 22 facade: 13.4 m of upper floors between a 5 m ground floor and a 2.6 m attic; three
+      // 5.6 m bays between 0.8 m pilasters, 4 floors of 3.35 m, one pair of a tall and a wide
+      // window per bay and floor; six 3.33 m arches below, one of them under the first tall window.
+      {"gbef_m8", {2.2, 7.0}, {{{0.01, 7.0}, {19.99, 7.0}, 6}, {{2.2, 0.01}, {2.2, 21.99}, 5}}},
   };
   for (const auto& c : cases) {
     SCOPED_TRACE(c.sample);
