@@ -4,6 +4,9 @@
 // and with a PNG (zlib; `nut grammar` writes Zopfli, slower).
 #include <benchmark/benchmark.h>
 
+#include <cstdint>
+#include <map>
+#include <stdexcept>
 #include <string>
 
 #include <grammar/compile.hpp>

@@ -57,12 +57,15 @@ std::array<std::uint8_t, 3> colourAt(const CompiledGrammar& c, double x, double 
   return r.colour;
 }
 
-// Runs of one colour along y = const, from x0 to x1 in steps: the colours met, in order.
-std::vector<std::array<std::uint8_t, 3>> runsAlong(const CompiledGrammar& c, double y, double x0, double x1) {
+// The colours a line of straight rays (from +z, one every centimetre) meets from `from` to `to`,
+// each run of one colour once, in order.
+std::vector<std::array<std::uint8_t, 3>> runsAlong(const CompiledGrammar& c, glm::dvec2 from, glm::dvec2 to) {
   const HniRayCaster caster(c.image, c.originM);
+  const int steps = static_cast<int>(glm::length(to - from) / 0.01);
   std::vector<std::array<std::uint8_t, 3>> runs;
-  for (double x = x0; x < x1; x += 0.01) {
-    const RayResult r = caster.trace({x, y, 50.0}, {0, 0, -1}, 1e-4, RayCastOptions{Lookup::Exact});
+  for (int i = 0; i <= steps; ++i) {
+    const glm::dvec2 p = from + (to - from) * (static_cast<double>(i) / steps);
+    const RayResult r = caster.trace({p.x, p.y, 50.0}, {0, 0, -1}, 1e-4, RayCastOptions{Lookup::Exact});
     if (runs.empty() || runs.back() != r.colour) runs.push_back(r.colour);
   }
   return runs;
@@ -98,7 +101,7 @@ TEST(GrammarCompile, FigureTwelveHasTheWindowsAndFloorsItsArithmeticSays) {
   const auto wall = colourAt(*c, 0.1, 0.1);
   for (int f = 0; f < 4; ++f) {
     SCOPED_TRACE(::testing::Message() << "floor " << f);
-    const auto runs = runsAlong(*c, floorCentres[f], 0.005, 15.0);
+    const auto runs = runsAlong(*c, {0.005, floorCentres[f]}, {14.995, floorCentres[f]});
     ASSERT_EQ(runs.size(), 2u * windows[f] + 1) << "wall, window, wall, ... along the floor";
     for (std::size_t i = 0; i < runs.size(); i += 2) EXPECT_EQ(runs[i], wall);
     // RandStack at each floor and RandUni(1, ...) per window: one window style per floor.
@@ -106,25 +109,10 @@ TEST(GrammarCompile, FigureTwelveHasTheWindowsAndFloorsItsArithmeticSays) {
     EXPECT_GT(runs[1][2], runs[1][0]) << "windows are the blue-grey tone";
   }
   // Between floors, above the ground floor's windows, only wall.
-  EXPECT_EQ(runsAlong(*c, 2.9, 0.005, 15.0).size(), 1u);
+  EXPECT_EQ(runsAlong(*c, {0.005, 2.9}, {14.995, 2.9}).size(), 1u);
   // Shared through the Layer's Skips: per floor kind a tile and a window column, the middle
   // floors' row, the floors' split and the facade; not a block per window.
   EXPECT_LE(c->hierarchy.blocks.size(), 9u);
-}
-
-// How many separate runs of `colour` a line of straight rays (from +z) crosses, from `from` to `to`.
-int runsOf(const CompiledGrammar& c, const std::array<std::uint8_t, 3>& colour, glm::dvec2 from, glm::dvec2 to) {
-  const HniRayCaster caster(c.image, c.originM);
-  const int steps = static_cast<int>(glm::length(to - from) / 0.01);
-  int runs = 0;
-  bool inside = false;
-  for (int i = 0; i <= steps; ++i) {
-    const glm::dvec2 p = from + (to - from) * (static_cast<double>(i) / steps);
-    const bool match = caster.trace({p.x, p.y, 50.0}, {0, 0, -1}, 1e-4, RayCastOptions{Lookup::Exact}).colour == colour;
-    runs += match && !inside;
-    inside = match;
-  }
-  return runs;
 }
 
 // Windows counted along rows and columns of the front of five samples, against counts worked out by
@@ -170,9 +158,11 @@ TEST(GrammarCompile, EverySampleHasTheWindowsItsSizesSay) {
     ASSERT_TRUE(compiledSample) << compiledSample.error().message;
     const auto window = colourAt(*compiledSample, c.window.x, c.window.y);
     EXPECT_GT(window[2], window[0]) << "the probe hits a window (blue-grey)";
-    for (const Line& line : c.lines)
-      EXPECT_EQ(runsOf(*compiledSample, window, line.from, line.to), line.windows)
+    for (const Line& line : c.lines) {
+      const auto runs = runsAlong(*compiledSample, line.from, line.to);
+      EXPECT_EQ(std::count(runs.begin(), runs.end(), window), line.windows)
           << "from " << line.from.x << ", " << line.from.y << " to " << line.to.x << ", " << line.to.y;
+    }
   }
 }
 
@@ -192,8 +182,6 @@ TEST(GrammarCompile, AlikeResultsAreOneBlock) {
   )";
   const CompiledGrammar c = compiled(text, {.seed = 3});
   // 2 floors x 20 tiles; every tile is a node of three cells, so distinct tiles = distinct styles.
-  std::set<std::uint16_t> styles;
-  const HniRayCaster caster(c.image, c.originM);
   std::set<std::array<std::uint8_t, 3>> seen;
   for (int f = 0; f < 2; ++f)
     for (int t = 0; t < 20; ++t) seen.insert(colourAt(c, t + 0.5, 2 + 4 * f));
@@ -220,7 +208,7 @@ TEST(GrammarCompile, AlikeTilesAreOneWrappedRedirection) {
   const Block& root = c.hierarchy.blocks[c.hierarchy.root];
   ASSERT_EQ(root.redirections.size(), 1u);
   EXPECT_TRUE(root.redirections[0].wrap[0]);
-  EXPECT_EQ(runsAlong(c, 1.5, 0.005, 30.0).size(), 61u);  // 30 windows between 31 walls
+  EXPECT_EQ(runsAlong(c, {0.005, 1.5}, {29.995, 1.5}).size(), 61u);  // 30 windows between 31 walls
 }
 
 TEST(GrammarCompile, TheSameSeedGivesTheSameBytesAndOtherSeedsOtherFacades) {

@@ -15,9 +15,10 @@ namespace nut::grammar {
 struct CompiledGrammar {
   Derivation derivation;
   Hierarchy hierarchy;
-  Image image;              // the HNI
-  glm::dvec3 originM{0.0};  // world position of the root block's corner (HniText::originM)
-  double deriveSeconds = 0, compileSeconds = 0;
+  Image image;                // the HNI
+  glm::dvec3 originM{0.0};    // world position of the root block's corner (HniText::originM)
+  double deriveSeconds = 0;   // derive() and derivationHierarchy()
+  double compileSeconds = 0;  // compile()
 };
 
 // derive(), derivationHierarchy() and compile(). Errors name the grammar file and the rule.
