@@ -18,7 +18,7 @@ namespace {
 
 struct CompareOptions {
   std::string a, b, diff;
-  int threshold = 8;
+  int threshold = 8, reduce = 1;
   bool json = false;
 };
 
@@ -27,6 +27,11 @@ int run(const CompareOptions& o) {
   if (!a) return fail(a.error().message, kUnreadable);
   auto b = readPng(o.b, PngKind::Render);
   if (!b) return fail(b.error().message, kUnreadable);
+  if (o.reduce > 1) {
+    auto reduced = boxFilter(a->image, o.reduce);
+    if (!reduced) return fail(o.a + ": " + reduced.error().message, kInvalid);
+    a->image = std::move(*reduced);
+  }
   auto d = nut::compareImages(a->image, b->image, o.threshold);
   if (!d) return fail(d.error().message, kInvalid);
   if (!o.diff.empty())
@@ -73,6 +78,11 @@ void addCompareCommand(CLI::App& app, int& exitCode) {
   cmd->add_option("--threshold", o->threshold, "A pixel differs when some channel differs by more than this (0..255)")
       ->default_val(8)
       ->check(CLI::Range(0, 255));
+  cmd->add_option("--reduce", o->reduce,
+                  "Box-filter the first image by N x N pixels first: a reference rendered at N times the size "
+                  "becomes a supersampled one")
+      ->default_val(1)
+      ->check(CLI::Range(1, 16));
   cmd->add_flag("--json", o->json, "Print the numbers as JSON");
   cmd->footer(
       "Numbers (over R, G, B on the 0..255 scale; alpha is ignored):\n"
@@ -86,7 +96,8 @@ void addCompareCommand(CLI::App& app, int& exitCode) {
       "than the threshold red (both brighter as the difference grows; red is full from 64 up).\n"
       "The exit code is 0 whenever the comparison ran; differences are reported, not failed.\n\n"
       "Example:\n  nut render building.png -o hni.png && nut render-mesh building.obj -o mesh.png\n"
-      "  nut compare hni.png mesh.png --diff diff.png --threshold 8\n\n" +
+      "  nut compare hni.png mesh.png --diff diff.png --threshold 8\n"
+      "  nut compare ref-1280x720.png lod-320x180.png --reduce 4   # against a 4x4 supersampled reference\n\n" +
       std::string(kExitCodesHelp));
   cmd->callback([o, &exitCode] { exitCode = run(*o); });
 }

@@ -22,7 +22,7 @@ struct GrammarCliOptions {
   std::string input, output, start, size, mesh, report, meshFaces = "solid";
   std::uint64_t seed = 0;
   double wallM = 0.3;
-  bool quiet = false;
+  bool lod = false, quiet = false;
 };
 
 Result<glm::dvec3> parseSize(const std::string& text) {
@@ -48,7 +48,8 @@ int run(const GrammarCliOptions& o) {
   if (!text) return fail(text.error().message, kUnreadable);
   auto g = grammar::parseGrammar(*text, o.input, o.start);
   if (!g) return fail(g.error().message, kInvalid);
-  auto compiled = grammar::compileGrammar(*g, options);
+  auto compiled = grammar::compileGrammar(*g, options, o.lod ? std::optional<LodMeasureOptions>(LodMeasureOptions{})
+                                                             : std::nullopt);
   if (!compiled) return fail(compiled.error().message, kInvalid);
 
   HniText hniText;
@@ -84,7 +85,15 @@ int run(const GrammarCliOptions& o) {
                              {"dag_depth", stats.dagDepth},
                              {"image", {stats.width, stats.height}},
                              {"png_bytes", pngBytes},
-                             {"seconds", {{"derive", compiled->deriveSeconds}, {"compile", compiled->compileSeconds}}}};
+                             {"seconds",
+                              {{"derive", compiled->deriveSeconds},
+                               {"compile", compiled->compileSeconds},
+                               {"lod", compiled->lodSeconds}}}};
+    if (o.lod) {
+      nlohmann::json footprints = nlohmann::json::array();
+      for (const Block& block : compiled->hierarchy.blocks) footprints.push_back(block.lodFootprintM);
+      report["lod_footprint_m"] = footprints;  // per block id; 0 = never drawn as its summary
+    }
     if (!o.mesh.empty()) report["mesh"] = {{"file", o.mesh}, {"faces", o.meshFaces}, {"triangles", triangles}};
     if (Status s = writeTextFile(o.report, report.dump(2) + "\n"); !s) return fail(s.error().message, kUnreadable);
   }
@@ -93,7 +102,7 @@ int run(const GrammarCliOptions& o) {
                  "grammar: %s: %lld shapes, %zu distinct, %d blocks; wrote %s (%dx%d, %ju bytes PNG) in %.3f s\n",
                  o.input.c_str(), compiled->derivation.shapes, compiled->derivation.nodes.size(), stats.blocks,
                  o.output.c_str(), stats.width, stats.height, static_cast<std::uintmax_t>(pngBytes),
-                 compiled->deriveSeconds + compiled->compileSeconds);
+                 compiled->deriveSeconds + compiled->compileSeconds + compiled->lodSeconds);
   return kOk;
 }
 
@@ -121,10 +130,14 @@ void addGrammarCommand(CLI::App& app, int& exitCode) {
       ->capture_default_str();
   cmd->add_option("--report", o->report, "Write a JSON report (shapes, blocks, bytes, timings)")
       ->check(outputExtension(".json", "JSON"));
+  cmd->add_flag("--lod", o->lod,
+                "Measure each block's level of detail (its summary against its full render) and store it: "
+                "a version 2 HNI that `nut render --lod auto` draws with fewer steps far away");
   cmd->add_flag("--quiet", o->quiet, "No summary on stderr");
   cmd->footer(
       "Examples:\n  nut grammar samples/grammars/krecklau_figure12.grammar -o facade.png --seed 7\n"
-      "  nut grammar samples/grammars/pga_simple_house.grammar -o house.png --mesh house.obj --report house.json\n\n" +
+      "  nut grammar samples/grammars/pga_simple_house.grammar -o house.png --mesh house.obj --report house.json\n"
+      "  nut grammar samples/grammars/pga_complex_house.grammar -o house.png --lod\n\n" +
       std::string(kExitCodesHelp));
   cmd->callback([o, &exitCode] { exitCode = run(*o); });
 }

@@ -30,7 +30,7 @@ namespace nut::cli {
 namespace {
 
 struct RenderOptions {
-  std::string input, output, depth, stats, backend = "cpu", lookup = "exact";
+  std::string input, output, depth, stats, backend = "cpu", lookup = "exact", lod = "off";
   std::vector<std::string> meshes;
   CameraOptions camera;
 #if NUT_HAVE_GL
@@ -104,6 +104,7 @@ Status writeStats(const RenderOptions& o, const Camera& camera, const RenderStat
                       {"width", camera.width},
                       {"height", camera.height},
                       {"lookup", o.lookup},
+                      {"lod", o.lod},
                       {"lod_px", o.lodPx},
                       {"backend", o.backend}};
   if (o.backend == "gl")
@@ -123,6 +124,7 @@ int run(const RenderOptions& o) {
   RayCastOptions options;
   options.lookup = o.lookup == "exact" ? Lookup::Exact : Lookup::Heuristic;
   options.lodPx = o.lodPx;
+  options.lodAuto = o.lod == "auto";
   options.maxIterations = o.maxIterations;
   std::fprintf(stderr, "render: %s (%zu HNI%s, %zu mesh%s), %dx%d, %s lookup\n", o.input.c_str(), scene.hnis.size(),
                scene.hnis.size() == 1 ? "" : "s", scene.meshes.size(), scene.meshes.size() == 1 ? "" : "es",
@@ -175,6 +177,11 @@ void addRenderCommand(CLI::App& app, int& exitCode) {
   cmd->add_option(
       "--mesh", o->meshes,
       "A mesh (OBJ; a complementary mesh) drawn with the HNI in one image, nearest surface in front (repeatable)");
+  cmd->add_option("--lod", o->lod,
+                  "auto: draw a sub-block as its visual summary where one pixel spans more than the footprint "
+                  "measured for it (HNIs from `nut grammar --lod`); off: full detail")
+      ->check(CLI::IsMember({"off", "auto"}))
+      ->capture_default_str();
   cmd->add_option("--lod-px", o->lodPx,
                   "Use visual summaries for redirection cells smaller than this many pixels (0: full detail)")
       ->check(CLI::NonNegativeNumber);
@@ -196,6 +203,7 @@ void addRenderCommand(CLI::App& app, int& exitCode) {
   cmd->footer(
       "Examples:\n  nut render samples/hni/building.png -o building.png --size 1280x720 --stats stats.json\n"
       "  nut render samples/hni/building.png -o building-gl.png --backend gl --gl egl\n"
+      "  nut render grid/city.json -o grid.png --lod auto   # after nut grammar --lod\n"
       "  nut render carpark.png -o carpark-render.png --mesh carpark-rest.obj\n"
       "  nut render street/city.json -o street.png        # after nut convert street.obj -o street/\n\n" +
       std::string(kExitCodesHelp));

@@ -117,6 +117,8 @@ int main(int argc, char** argv) {
   integer("kCellFirstSolid", f::kCellFirstSolid);
   integer("kSolidCount", f::kSolidCount);
   integer("kYawSteps", f::kYawSteps);
+  integer("kLodCodeOneMetre", f::kLodCodeOneMetre);
+  integer("kLodCodesPerOctave", f::kLodCodesPerOctave);
   out << "const float kMetresPerUnit = " << glslFloat(f::kMetresPerUnit) << ";\n\n";
 
   // Ray caster limits (nut/raycast.hpp) and the float epsilon its landing probe scales.

@@ -131,12 +131,14 @@ vec2 yawCosSin(uint yaw) {
 }
 
 // A redirection record (docs/FORMAT.md): target-frame to cell-frame rotation R = Yaw * Cube, the
-// offset O in units, the target header and the tiling flags.
+// offset O in units, the target header, the tiling flags and the target's level-of-detail
+// footprint in units (0 = none).
 struct Redirect {
   mat3 rotation;
   vec3 offset;
   ivec2 target;
   int wrap;
+  float lodFootprint;
 };
 
 Redirect loadRedirect(ivec2 at) {
@@ -149,6 +151,8 @@ Redirect loadRedirect(ivec2 at) {
   r.wrap = int(p0.a);
   r.target = ivec2(p3.rg);
   r.rotation = kCubeRotation[int(p1.a)];
+  r.lodFootprint = p2.a == 0u ? 0.0
+                              : exp2(float(int(p2.a) - kLodCodeOneMetre) / float(kLodCodesPerOctave)) / kMetresPerUnit;
   uint yaw = p3.b | (p3.a << 8);
   if (yaw != 0u) {
     // Right-handed about +y; a cube rotation is a signed permutation, so the product is exact.

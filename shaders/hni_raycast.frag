@@ -30,6 +30,7 @@ uniform vec2 uViewportSize;
 uniform vec2 uDepthFromEyeZ;
 uniform float uPixelAngle;   // the angle one pixel subtends, radians
 uniform float uLodPx;        // level of detail: 0 = full detail
+uniform bool uLodAuto;       // level of detail from the footprints records carry (--lod auto)
 uniform int uMaxIterations;  // cell visits and landings per ray
 // Exact metadata lookup (two fetches) instead of the heuristic (one): NUT_EXACT_LOOKUP is defined
 // by the program's builder (nut::viewer::HniRenderer), one program per mode.
@@ -263,8 +264,10 @@ void main() {
 
     Redirect record = loadRedirect(ivec2(texel.rg));
     vec3 cellSize = L.hi - L.lo;
-    float projectedPx = max(cellSize.x, max(cellSize.y, cellSize.z)) / (max(t, 1.0) * uPixelAngle);
-    if (top + 1 == kMaxStackDepth || (uLodPx > 0.0 && projectedPx < uLodPx)) {
+    float pixelSpan = max(t, 1.0) * uPixelAngle;
+    float projectedPx = max(cellSize.x, max(cellSize.y, cellSize.z)) / pixelSpan;
+    if (top + 1 == kMaxStackDepth || (uLodAuto && record.lodFootprint > 0.0 && pixelSpan > record.lodFootprint) ||
+        (uLodPx > 0.0 && projectedPx < uLodPx)) {
       // Level of detail: the target's visual summary of the face the ray entered through.
       vec3 normalWorld = L.entryNormal;
       vec3 inTarget = transpose(L.toWorld * record.rotation) * normalWorld;

@@ -393,12 +393,14 @@ void writeData(Image& image, const Block& block, const BlockPlan& blockPlan, con
       }
 }
 
-void writeRecord(Image& image, const RecordKey& record, TexelAddress at, const packer::Rect& targetHeader) {
+void writeRecord(Image& image, const RecordKey& record, TexelAddress at, const packer::Rect& targetHeader,
+                 std::uint8_t targetLodCode) {
   for (int a = 0; a < 3; ++a)
     writeU24(image.at(at.u + a, at.v),
              static_cast<std::uint32_t>(record.offset[static_cast<std::size_t>(a)]) & 0xffffff);
   image.at(at.u, at.v)[3] = record.wrap;
   image.at(at.u + 1, at.v)[3] = record.cube;
+  image.at(at.u + format::kRedirectionLodPixel, at.v)[3] = targetLodCode;
   std::uint8_t* q = image.at(at.u + 3, at.v);
   q[0] = static_cast<std::uint8_t>(targetHeader.x), q[1] = static_cast<std::uint8_t>(targetHeader.y);
   writeU16(q + 2, record.yaw);
@@ -454,8 +456,14 @@ Result<Image> compile(const Hierarchy& h, const CompileOptions& options) {
     }
     writeData(image, h.blocks[b], blockPlan, at.data[b], at.record);
   }
-  for (std::size_t r = 0; r < planned->records.size(); ++r)
-    writeRecord(image, planned->records[r], at.record[r], at.header[planned->records[r].target]);
+  bool anyLod = false;
+  for (std::size_t r = 0; r < planned->records.size(); ++r) {
+    const BlockId target = planned->records[r].target;
+    const std::uint8_t lod = lodCode(h.blocks[target].lodFootprintM);
+    anyLod = anyLod || lod != 0;
+    writeRecord(image, planned->records[r], at.record[r], at.header[target], lod);
+  }
+  if (anyLod) image.at(format::kFileMagic, 0)[3] = format::kVersionLod;
   writeMaterialsAndTextures(image, h, *planned, at);
   return image;
 }

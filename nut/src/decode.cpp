@@ -19,6 +19,7 @@ Result<Hierarchy> decode(const Image& image) {
     blockAt[{a.u, a.v}] = static_cast<BlockId>(b);
   }
   Hierarchy h;
+  std::map<BlockId, double> lodFootprintOf;  // per redirection target
   h.root = blockAt.at({file.root.u, file.root.v});
   for (int m = 0; m < file.materialCount; ++m) h.materials.push_back(view.material(file, m));
   for (int t = 0; t < file.textureCount; ++t) h.textures.push_back(view.textureInfo(file, t));
@@ -56,12 +57,14 @@ Result<Hierarchy> decode(const Image& image) {
               red.rotation = {r.cubeRotation, r.yaw};
               red.wrap = {(r.wrap & format::kWrapX) != 0, (r.wrap & format::kWrapY) != 0, (r.wrap & format::kWrapZ) != 0};
               block.redirections.push_back(red);
+              lodFootprintOf[red.target] = lodFootprintM(r.lodCode);  // validate(): all records agree
             }
             cell = Cell::redirect(it->second);
           }
         }
     h.blocks.push_back(std::move(block));
   }
+  for (const auto& [target, footprintM] : lodFootprintOf) h.blocks[target].lodFootprintM = footprintM;
   return h;
 }
 

@@ -135,6 +135,9 @@ Status checkHierarchy(const Hierarchy& h) {
     if (block.cells.size() != count)
       return Error{where + ": " + std::to_string(block.cells.size()) + " cells, expected " +
                    std::to_string(count)};
+    if (!std::isfinite(block.lodFootprintM) || block.lodFootprintM < 0.0)
+      return Error{where + ": level-of-detail footprint " + std::to_string(block.lodFootprintM) +
+                   " is not finite and non-negative"};
     for (std::size_t i = 0; i < block.cells.size(); ++i) {
       const Cell& c = block.cells[i];
       if (c.kind == CellKind::Solid) {
@@ -218,6 +221,13 @@ Hierarchy quantized(const Hierarchy& h) {
     }
     block.redirections = std::move(used);
   }
+  // A footprint is kept in the records that redirect to its block, in the code's steps.
+  std::vector<bool> targeted(q.blocks.size(), false);
+  for (const Block& block : q.blocks)
+    for (const Cell& c : block.cells)
+      if (c.kind == CellKind::Redirection) targeted[block.redirections[c.redirection].target] = true;
+  for (BlockId b = 0; b < q.blocks.size(); ++b)
+    q.blocks[b].lodFootprintM = targeted[b] ? lodFootprintM(lodCode(q.blocks[b].lodFootprintM)) : 0.0;
   for (TextureInfo& t : q.textures)
     for (int a = 0; a < 3; ++a) t.offsetM[a] = snapToUnits(t.offsetM[a]);
   return q;

@@ -63,4 +63,21 @@ Result<ImageDiff> compareImages(const Image& a, const Image& b, int threshold) {
   return d;
 }
 
+Result<Image> boxFilter(const Image& image, int factor) {
+  if (factor < 1 || image.width % factor != 0 || image.height % factor != 0)
+    return Error{"image " + std::to_string(image.width) + "x" + std::to_string(image.height) +
+                 " is not a multiple of the box filter's " + std::to_string(factor) + " pixels"};
+  Image out(image.width / factor, image.height / factor);
+  const int area = factor * factor;
+  for (int y = 0; y < out.height; ++y)
+    for (int x = 0; x < out.width; ++x)
+      for (int c = 0; c < 4; ++c) {
+        int sum = 0;
+        for (int dy = 0; dy < factor; ++dy)
+          for (int dx = 0; dx < factor; ++dx) sum += image.at(factor * x + dx, factor * y + dy)[c];
+        out.at(x, y)[c] = static_cast<std::uint8_t>((sum + area / 2) / area);
+      }
+  return out;
+}
+
 }  // namespace nut

@@ -19,6 +19,7 @@
 #include <nut/hierarchy.hpp>
 #include <nut/render_loop.hpp>
 #include <nut/solids.hpp>
+#include <nut/units.hpp>
 
 namespace nut {
 
@@ -168,7 +169,8 @@ bool step(Level& L, const HniRayCaster::Block& block, std::size_t a) {
 std::size_t argMin(const Float3& v) { return v[0] <= v[1] ? (v[0] <= v[2] ? 0 : 2) : (v[1] <= v[2] ? 1 : 2); }
 }  // namespace
 
-HniRayCaster::HniRayCaster(const Image& image, const glm::dvec3& originM, const glm::dmat3& worldFromRoot)
+HniRayCaster::HniRayCaster(const Image& image, const glm::dvec3& originM, const glm::dmat3& worldFromRoot,
+                           std::optional<BlockId> rootBlock)
     : image_(image), view_(image), originM_(originM), rootFromWorld_(glm::transpose(worldFromRoot)), worldFromRoot_(worldFromRoot), blockByHeader_(256 * 256, -1) {
   file_ = view_.fileRecord();
   for (int b = 0; b < file_.blockCount; ++b) {
@@ -191,7 +193,7 @@ HniRayCaster::HniRayCaster(const Image& image, const glm::dvec3& originM, const 
     blockByHeader_[static_cast<std::size_t>(at.v * 256 + at.u)] = static_cast<int>(blocks_.size());
     blocks_.push_back(block);
   }
-  root_ = blockAt(file_.root);
+  root_ = rootBlock ? static_cast<int>(*rootBlock) : blockAt(file_.root);  // blocks_[id] is block id
   for (int m = 0; m < file_.materialCount; ++m) materials_.push_back(view_.material(file_, m));
   // Every redirection record a cell uses, decoded once.
   redirectByRecord_.assign(256 * 256, -1);
@@ -207,7 +209,8 @@ HniRayCaster::HniRayCaster(const Image& image, const glm::dvec3& originM, const 
           const RedirectionRecord r = view_.redirection({texel[0], texel[1]});
           index = static_cast<int>(redirects_.size());
           redirects_.push_back({glm::mat3(rotationMatrix(Rotation{r.cubeRotation, r.yaw})), glm::vec3(r.offsetUnits),
-                                blockAt(r.target), r.wrap, r.cubeRotation == 0 && r.yaw == 0});
+                                blockAt(r.target), r.wrap, r.cubeRotation == 0 && r.yaw == 0,
+                                static_cast<float>(lodFootprintM(r.lodCode) / format::kMetresPerUnit)});
         }
   }
 }
@@ -269,7 +272,7 @@ class HniRayCaster::Walk {
         if (hitSolid(L, texel, t, tCellExit, top)) return;
       } else if (g == format::kCellRedirection) {
         const Redirect& record = redirectOf(texel);
-        if (top + 1 == kMaxStackDepth || (options_.lodPx > 0 && belowLevelOfDetail(L, t))) {
+        if (top + 1 == kMaxStackDepth || summaryStandsIn(L, record, t)) {
           if (drawSummary(L, record, t, top)) return;
         } else {
           const float landed = descend(L, record, t, tCellExit, stack_[static_cast<std::size_t>(top + 1)]);
@@ -328,10 +331,15 @@ class HniRayCaster::Walk {
     return add(tHit, normalWorld, {m.r, m.g, m.b}, m.opacity);
   }
 
-  // Level of detail: a cell of size s spans s / (t * pixelAngle) pixels.
-  bool belowLevelOfDetail(const Level& L, float t) const {
+  // Level of detail: one pixel spans t * pixelAngle at the ray's distance. With --lod auto the
+  // target's summary stands in where that exceeds the record's footprint; with --lod-px where the
+  // cell (of size s, spanning s / (t * pixelAngle) pixels) spans fewer than lodPx pixels.
+  bool summaryStandsIn(const Level& L, const Redirect& record, float t) const {
+    const float pixelSpan = std::max(t, 1.0f) * pixelAngle_;
+    if (options_.lodAuto && record.lodFootprint > 0 && pixelSpan > record.lodFootprint) return true;
+    if (options_.lodPx <= 0) return false;
     const float cellSize = std::max({L.hi[0] - L.lo[0], L.hi[1] - L.lo[1], L.hi[2] - L.lo[2]});
-    return cellSize < static_cast<float>(options_.lodPx) * std::max(t, 1.0f) * pixelAngle_;
+    return cellSize < static_cast<float>(options_.lodPx) * pixelSpan;
   }
 
   // A redirection cell drawn as its target's visual summary of the face the ray entered through.

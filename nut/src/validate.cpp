@@ -37,9 +37,10 @@ class Validator {
     const std::uint8_t* magic = image_.at(0, 0);
     if (magic[0] != format::kMagic[0] || magic[1] != format::kMagic[1] || magic[2] != format::kMagic[2])
       return Error{"pixel (0,0) file record: wrong magic (not an HNI)"};
-    if (magic[3] != format::kVersion)
+    if (magic[3] != format::kVersion && magic[3] != format::kVersionLod)
       return Error{"pixel (0,0) file record: unsupported version " + std::to_string(magic[3]) +
-                   " (this build reads version " + std::to_string(format::kVersion) + ")"};
+                   " (this build reads versions " + std::to_string(format::kVersion) + " and " +
+                   std::to_string(format::kVersionLod) + ")"};
     file_ = view_.fileRecord();
     edges_.resize(static_cast<std::size_t>(file_.blockCount));
     if (Status s = checkFileRecord(); !s) return s;
@@ -236,9 +237,15 @@ class Validator {
       return Error{rw() + ": tiling flags " + std::to_string(record.wrap) + " out of range"};
     if (record.cubeRotation >= format::kCubeRotationCount)
       return Error{rw() + ": rotation " + std::to_string(record.cubeRotation) + " out of range"};
-    if (view_.texel(r, 2)[3] != 0) return Error{rw() + ": reserved byte is not zero"};
+    if (file_.version == format::kVersion && record.lodCode != 0)
+      return Error{rw() + ": level-of-detail byte is not zero in a version 1 file"};
     const auto target = headers_.find({record.target.u, record.target.v});
     if (target == headers_.end()) return Error{rw() + ": target " + at(record.target) + " is not a block header"};
+    // The footprint belongs to the target block: every record that redirects to it agrees.
+    const auto [lod, first] = lodCodeByTarget_.try_emplace(target->second, record.lodCode);
+    if (!first && lod->second != record.lodCode)
+      return Error{rw() + ": level-of-detail code " + std::to_string(record.lodCode) + " differs from " +
+                   std::to_string(lod->second) + " of another record to block " + std::to_string(target->second)};
     recordTargets_[{r.u, r.v}] = target->second;
     edges_[static_cast<std::size_t>(b)].insert(target->second);
     return Ok{};
@@ -276,6 +283,7 @@ class Validator {
   FileRecord file_;
   std::map<std::pair<int, int>, int> headers_;        // header address -> block id
   std::map<std::pair<int, int>, int> recordTargets_;  // record address -> target block
+  std::map<int, std::uint8_t> lodCodeByTarget_;  // target block -> the footprint code its records carry
   std::vector<std::set<int>> edges_;
 };
 

@@ -65,5 +65,28 @@ TEST(CompareImages, SizeMismatchAndBadThresholdAreErrors) {
   EXPECT_EQ(t.error().message, "threshold 256: expected 0..255");
 }
 
+TEST(BoxFilter, MeansOfSquaresRounded) {
+  Image a = filled(4, 2, 0);
+  // Left square: 0, 10, 20, 31 -> 15.25 -> 15; right square: 255 four times -> 255.
+  a.at(0, 0)[0] = 0, a.at(1, 0)[0] = 10, a.at(0, 1)[0] = 20, a.at(1, 1)[0] = 31;
+  for (int x = 2; x < 4; ++x)
+    for (int y = 0; y < 2; ++y) a.at(x, y)[1] = 255;
+  auto r = boxFilter(a, 2);
+  ASSERT_TRUE(r.ok()) << r.error().message;
+  EXPECT_EQ(r->width, 2);
+  EXPECT_EQ(r->height, 1);
+  EXPECT_EQ(r->texel(0, 0), (Rgba8{15, 0, 0, 255}));
+  EXPECT_EQ(r->texel(1, 0), (Rgba8{0, 255, 0, 255}));
+  auto one = boxFilter(a, 1);
+  ASSERT_TRUE(one.ok());
+  EXPECT_EQ(*one, a);
+}
+
+TEST(BoxFilter, RefusesASizeThatIsNoMultiple) {
+  auto r = boxFilter(filled(5, 4, 0), 2);
+  ASSERT_FALSE(r.ok());
+  EXPECT_NE(r.error().message.find("5x4 is not a multiple"), std::string::npos) << r.error().message;
+}
+
 }  // namespace
 }  // namespace nut

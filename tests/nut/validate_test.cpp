@@ -2,10 +2,12 @@
 // of an image, and decode() refusing what validate() refuses.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <random>
 
 #include <nut/hni.hpp>
 #include <nut/hni_view.hpp>
+#include <nut/units.hpp>
 
 #include "random_hierarchy.hpp"
 
@@ -108,6 +110,74 @@ TEST_F(Fixture, RedirectionTargetNotAHeader) {
   const TexelAddress record{c[0], c[1]};
   image.at(record.u + 3, record.v)[0] ^= 1;
   expectRejected("is not a block header");
+}
+
+TEST_F(Fixture, LevelOfDetailByteInAVersion1File) {
+  std::uint8_t* c = cell(0, {0, 0, 0});
+  image.at(c[0] + format::kRedirectionLodPixel, c[1])[3] = 5;
+  expectRejected("level-of-detail byte is not zero in a version 1 file");
+}
+
+// Root with two redirections to one block, at different offsets: two records, one target.
+Hierarchy twoRecordsToOneBlock(double footprintM) {
+  Hierarchy h;
+  h.materials = {{90, 90, 200}};
+  Block root = Block::fromSizes({{{1.0, 1.0}, {1.0}, {1.0}}});
+  root.redirections = {{1}, {1, {0.0, 0.25, 0.0}}};
+  root.cell(0, 0, 0) = Cell::redirect(0);
+  root.cell(1, 0, 0) = Cell::redirect(1);
+  Block b = Block::fromSizes({{{0.5}, {0.5}, {0.5}}});
+  b.cell(0, 0, 0) = Cell::box(0);
+  b.lodFootprintM = footprintM;
+  h.addBlock(root);
+  h.addBlock(b);
+  return h;
+}
+
+TEST(LevelOfDetailFormat, FootprintsRoundTripInAVersion2File) {
+  const Hierarchy h = twoRecordsToOneBlock(0.3);
+  auto image = compile(h);
+  ASSERT_TRUE(image) << image.error().message;
+  EXPECT_EQ(image->at(0, 0)[3], format::kVersionLod);
+  auto decoded = decode(*image);
+  ASSERT_TRUE(decoded) << decoded.error().message;
+  // 0.3 m is coded as the next step up: 2^(-28/16) = 0.2973 is below it, 2^(-27/16) = 0.3100 not.
+  EXPECT_DOUBLE_EQ(decoded->blocks[1].lodFootprintM, std::exp2(-27.0 / 16.0));
+  EXPECT_EQ(decoded->blocks[1].lodFootprintM, quantized(h).blocks[1].lodFootprintM);
+  auto again = compile(*decoded);
+  ASSERT_TRUE(again);
+  EXPECT_EQ(*again, *image);
+}
+
+TEST(LevelOfDetailFormat, NoFootprintWritesVersion1) {
+  auto image = compile(twoRecordsToOneBlock(0.0));
+  ASSERT_TRUE(image);
+  EXPECT_EQ(image->at(0, 0)[3], format::kVersion);
+}
+
+TEST(LevelOfDetailFormat, RecordsToOneBlockMustAgree) {
+  auto image = compile(twoRecordsToOneBlock(0.3));
+  ASSERT_TRUE(image);
+  const HniView view(*image);
+  const BlockHeader root = view.header(view.blockAddress(view.fileRecord(), 0));
+  const CellTexel second = view.cell(root, {1, 0, 0});
+  image->at(second.redirection.u + format::kRedirectionLodPixel, second.redirection.v)[3] += 1;
+  const Status s = validate(*image);
+  ASSERT_FALSE(s.ok());
+  EXPECT_NE(s.error().message.find("differs from"), std::string::npos) << s.error().message;
+}
+
+TEST(LevelOfDetailFormat, CodesAndFootprints) {
+  EXPECT_EQ(lodCode(0.0), 0);
+  EXPECT_EQ(lodCode(-1.0), 0);
+  EXPECT_EQ(lodCode(std::nan("")), 0);
+  EXPECT_EQ(lodFootprintM(0), 0.0);
+  EXPECT_EQ(lodFootprintM(format::kLodCodeOneMetre), 1.0);
+  EXPECT_EQ(lodCode(1e-6), 1) << "below the smallest footprint: clamped up";
+  EXPECT_EQ(lodCode(1e6), 255) << "above the largest: clamped";
+  for (int c = 1; c <= 255; ++c) EXPECT_EQ(lodCode(lodFootprintM(static_cast<std::uint8_t>(c))), c);
+  // Rounding is up: the stored footprint is never below the measured one (inside the range).
+  for (double m = lodFootprintM(1); m < lodFootprintM(255); m *= 1.013) EXPECT_GE(lodFootprintM(lodCode(m)), m);
 }
 
 TEST_F(Fixture, Cycle) {

@@ -120,6 +120,7 @@ void HniRenderer::draw(const FrameView& view, const HniAtlas& atlas, std::span<c
   gl.Uniform2f(program.uniform("uDepthFromEyeZ"), view.depthFromEyeZ.x, view.depthFromEyeZ.y);
   gl.Uniform1f(program.uniform("uPixelAngle"), view.pixelAngle);
   gl.Uniform1f(program.uniform("uLodPx"), static_cast<float>(options.lodPx));
+  gl.Uniform1i(program.uniform("uLodAuto"), options.lodAuto ? 1 : 0);
   gl.Uniform1i(program.uniform("uMaxIterations"), options.maxIterations);
 
   gl.Enable(GL_DEPTH_TEST);

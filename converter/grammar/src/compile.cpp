@@ -7,7 +7,8 @@
 
 namespace nut::grammar {
 
-Result<CompiledGrammar> compileGrammar(const Grammar& g, const DeriveOptions& options) {
+Result<CompiledGrammar> compileGrammar(const Grammar& g, const DeriveOptions& options,
+                                       const std::optional<LodMeasureOptions>& lod) {
   using Clock = std::chrono::steady_clock;
   const auto seconds = [](Clock::time_point from) {
     return std::chrono::duration<double>(Clock::now() - from).count();
@@ -26,6 +27,14 @@ Result<CompiledGrammar> compileGrammar(const Grammar& g, const DeriveOptions& op
   if (!image) return Error{g.file + ": " + image.error().message};
   out.image = std::move(*image);
   out.compileSeconds = seconds(compiling);
+  if (lod) {
+    const auto measuring = Clock::now();
+    measureLevelOfDetail(out.hierarchy, out.image, *lod);
+    auto withLod = compile(out.hierarchy);
+    if (!withLod) return Error{g.file + ": " + withLod.error().message};
+    out.image = std::move(*withLod);
+    out.lodSeconds = seconds(measuring);
+  }
   return out;
 }
 

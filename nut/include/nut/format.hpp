@@ -1,4 +1,4 @@
-// nut/format.hpp — the HNI (Hierarchical NUT Image) format constants, version 1.
+// nut/format.hpp — the HNI (Hierarchical NUT Image) format constants, versions 1 and 2.
 //
 // The full byte-level specification is docs/FORMAT.md; this header is its single source in code
 // (the GLSL constants are generated from it). In short: an HNI is an RGBA8 image. The upper-left
@@ -11,7 +11,7 @@
 //   file record    (0,0) 6 px   magic "NUT", version, root, counts, array origins
 //   block header   12 px x 1    visual summary S, sizes D, cell counts N, metadata sizes M, addresses
 //   metadata item  M px x 2     row 0: (i, f, j_left, j_right) per metadata pixel; row 1: exact row
-//   redirection    4 px x 1     offset O (3 x s24 mm), tiling flags, rotation, target header
+//   redirection    4 px x 1     offset O (3 x s24 mm), tiling flags, rotation, LOD footprint, target header
 //   data component nx*nz x ny   one pixel per cell: (material lo, material hi, texture, g)
 //   material       2 px         (r, g, b, opacity), (reflectance, 0, 0, 0)
 //   texture info   3 px         offset To (3 x s24 mm), texture id (u16)
@@ -25,7 +25,10 @@
 namespace nut::format {
 
 inline constexpr std::uint8_t kMagic[3] = {'N', 'U', 'T'};
+// A writer writes the lowest version that holds its content: version 2 only when some redirection
+// record carries a level-of-detail footprint. A reader reads both.
 inline constexpr std::uint8_t kVersion = 1;
+inline constexpr std::uint8_t kVersionLod = 2;
 
 // Image limits. The width search of compile stops at kMaxSearchWidth unless one item is wider;
 // no HNI may exceed kMaxImageSize in either dimension (it must fit a viewer atlas page).
@@ -80,8 +83,13 @@ inline constexpr std::uint8_t kCellFirstSolid = 2;
 inline constexpr int kSolidCount = 69;
 inline constexpr std::uint8_t kCellLastSolid = kCellFirstSolid + kSolidCount - 1;  // 70
 
-// Redirection record: A of pixel 0 holds the tiling flags, A of pixel 1 the cube rotation.
+// Redirection record: A of pixel 0 holds the tiling flags, A of pixel 1 the cube rotation, A of
+// pixel 2 (version 2) the target's level-of-detail footprint code c: 0 = none, else the summary may
+// stand in where one pixel spans more than 2^((c - kLodCodeOneMetre) / kLodCodesPerOctave) metres.
 inline constexpr std::uint8_t kWrapX = 1, kWrapY = 2, kWrapZ = 4;
+inline constexpr int kRedirectionLodPixel = 2;
+inline constexpr int kLodCodeOneMetre = 128;
+inline constexpr int kLodCodesPerOctave = 16;
 inline constexpr int kCubeRotationCount = 24;
 // The free yaw angle about the sub-block's y axis is a u16 fraction of a full turn.
 inline constexpr int kYawSteps = 65536;

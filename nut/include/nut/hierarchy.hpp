@@ -106,6 +106,10 @@ struct Block {
   // Producers may supply the summary (e.g. from a grammar's own subtree); otherwise compile
   // computes it from the content. decode() fills it from the image.
   std::optional<VisualSummary> summary;
+  // Level of detail: where one pixel spans more than this many metres at the block, its visual
+  // summary may stand in for it (measureLevelOfDetail, lod.hpp); 0 = never. Stored in the records
+  // that redirect to the block, so the root's is not kept.
+  double lodFootprintM = 0.0;
 
   // A block of the given per-axis cell sizes (metres), all cells empty.
   static Block fromSizes(const std::array<std::vector<double>, 3>& sizesM);

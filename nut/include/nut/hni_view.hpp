@@ -51,6 +51,7 @@ struct RedirectionRecord {
   std::uint8_t wrap = 0;               // format::kWrapX | kWrapY | kWrapZ
   std::uint8_t cubeRotation = 0;
   std::uint16_t yaw = 0;
+  std::uint8_t lodCode = 0;            // version 2: the target's level-of-detail footprint (units.hpp)
   TexelAddress target;                 // header of the target block
 };
 
@@ -175,6 +176,7 @@ class HniView {
     r.offsetUnits = {readS24(p0), readS24(p1), readS24(p2)};
     r.wrap = p0[3];
     r.cubeRotation = p1[3];
+    r.lodCode = p2[3];
     r.target = {p3[0], p3[1]};
     r.yaw = static_cast<std::uint16_t>(p3[2] | p3[3] << 8);
     return r;

@@ -30,4 +30,9 @@ struct ImageDiff {
 // Error: "images differ in size: AxB vs CxD".
 Result<ImageDiff> compareImages(const Image& a, const Image& b, int threshold = 8);
 
+// The mean of each factor x factor square of pixels, rounded: a render made at factor times the
+// size becomes a supersampled (anti-aliased) reference for a render at the smaller size.
+// Error when the size is not a multiple of the factor.
+Result<Image> boxFilter(const Image& image, int factor);
+
 }  // namespace nut

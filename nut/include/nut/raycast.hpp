@@ -12,12 +12,14 @@
 #include <array>
 #include <cstdint>
 #include <functional>
+#include <optional>
 #include <vector>
 
 #include <glm/mat3x3.hpp>
 #include <glm/vec3.hpp>
 
 #include <nut/camera.hpp>
+#include <nut/hierarchy.hpp>
 #include <nut/hni_view.hpp>
 #include <nut/image.hpp>
 
@@ -30,6 +32,9 @@ struct RayCastOptions {
   // Stop descending into a redirection cell whose projected size is below this many pixels and
   // use the visual summary of the face hit instead. 0 = full detail.
   double lodPx = 0.0;
+  // Level of detail from measured error (--lod auto): draw a redirection's target as its visual
+  // summary where one pixel spans more than the footprint its record carries (version 2 files).
+  bool lodAuto = false;
   // Cell steps and landings per ray; a ray that reaches the cap ends with kCappedColour.
   int maxIterations = 512;
 };
@@ -55,7 +60,9 @@ class HniRayCaster {
   // The image must be valid (validate()); originM is the world position of the root block origin,
   // and worldFromRoot turns the root block's axes into the world's (a rotation: a city manifest's
   // yaw_deg, docs/CITY.md), about that origin.
-  HniRayCaster(const Image& image, const glm::dvec3& originM, const glm::dmat3& worldFromRoot = glm::dmat3(1.0));
+  // rootBlock renders another block of the file alone, as its root (level-of-detail measurement).
+  HniRayCaster(const Image& image, const glm::dvec3& originM, const glm::dmat3& worldFromRoot = glm::dmat3(1.0),
+               std::optional<BlockId> rootBlock = std::nullopt);
 
   // World bounding box of the root block (of its turned corners).
   WorldBox bounds() const;
@@ -89,6 +96,7 @@ class HniRayCaster {
     int target = 0;      // index into blocks_
     std::uint8_t wrap = 0;
     bool unrotated = true;  // most redirections: the ray needs no transform, only the offset
+    float lodFootprint = 0;  // units; 0 = none
   };
 
   // One ray's traversal (raycast.cpp), with the lookup's boundaries.
