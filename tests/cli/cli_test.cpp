@@ -295,6 +295,25 @@ TEST(GrammarCli, WritesWhatItIsAskedForAndNothingOnError) {
   EXPECT_FALSE(fs::exists(out("broken.png")));
 }
 
+// `nut grammar --lod` writes a version 2 HNI and the footprints in the report; `nut render --lod
+// auto` draws it, and any other --lod value is a usage error.
+TEST(GrammarCli, MeasuredLevelOfDetailIsWrittenAndRendered) {
+  const std::string grammar = source("samples/grammars/krecklau_figure12.grammar");
+  const CliRun r = nut("grammar " + grammar + " -o " + out("lod.png") + " --lod --report " + out("lod.json"));
+  ASSERT_EQ(r.exitCode, 0) << r.stderrText;
+  auto png = readPng(out("lod.png"));
+  ASSERT_TRUE(png) << png.error().message;
+  EXPECT_TRUE(validate(png->image).ok());
+  EXPECT_EQ(png->image.at(0, 0)[3], 2) << "version";
+  const auto report = nlohmann::json::parse(testing::fileText(out("lod.json")));
+  ASSERT_EQ(report["lod_footprint_m"].size(), report["blocks"].get<std::size_t>());
+  EXPECT_GT(report["lod_footprint_m"][0].get<double>(), 0.0);
+  const CliRun render = nut("render " + out("lod.png") + " -o " + out("lod-render.png") + " --size 64x36 --lod auto");
+  EXPECT_EQ(render.exitCode, 0) << render.stderrText;
+  expectOneErrorLine(nut("render " + out("lod.png") + " -o " + out("lod-render.png") + " --lod sometimes"), 2,
+                     "--lod");
+}
+
 // A misspelt command is named, with the commands there are, on one line.
 TEST(MainCli, AnUnknownCommandIsNamedWithTheCommandsThereAre) {
   const CliRun r = nut("rendr samples/hni/building.png -o x.png");

@@ -46,8 +46,9 @@ int renderInput(const std::uint8_t* data, std::size_t size) {
   // cell boundaries at odd places, and outwards from the centre.
   static constexpr std::array<glm::dvec3, 10> kFrom{{{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1},
                                                      {0, 0, -1}, {1, 1, 1}, {-1, 1, -1}, {1, -1, -1}, {-1, -1, 1}}};
-  const std::array<RayCastOptions, 2> options{
-      {{Lookup::Heuristic, 0.0, kIterationCap}, {Lookup::Exact, 4.0, kIterationCap}}};
+  const std::array<RayCastOptions, 3> options{{{Lookup::Heuristic, 0.0, kIterationCap},
+                                                {Lookup::Exact, 4.0, kIterationCap},
+                                                {Lookup::Exact, 0.0, kIterationCap, true}}};
   for (const RayCastOptions& o : options) {
     for (const glm::dvec3& from : kFrom) {
       const glm::dvec3 eye = centre + reach * glm::normalize(from);

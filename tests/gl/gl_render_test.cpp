@@ -97,6 +97,26 @@ TEST(GlMatchesCpu, LevelOfDetailFromAfar) {
   expectSameImage(s);
 }
 
+TEST(GlMatchesCpu, MeasuredLevelOfDetailFromAfar) {
+  auto g = grammar::readGrammar(std::string(NUT_SOURCE_DIR) + "/samples/grammars/pga_complex_house.grammar");
+  ASSERT_TRUE(g) << g.error().message;
+  auto c = grammar::compileGrammar(*g, {}, LodMeasureOptions{});
+  ASSERT_TRUE(c) << c.error().message;
+  auto bounds = contentBounds(c->hierarchy, c->originM);
+  ASSERT_TRUE(bounds);
+  Scene s{"grammar-lod-auto", c->hierarchy, c->image, c->originM, fitCamera(*bounds, 320, 180), {}};
+  // Eight times as far: a pixel spans about 1.5 m, more than several blocks' footprints.
+  s.camera.eye = s.camera.target + 8.0 * (s.camera.eye - s.camera.target);
+  s.camera.farM *= 8.0;
+  s.options.lodAuto = true;
+  expectSameImage(s);
+  // The comparison is of summaries: the CPU draws some where full detail differs.
+  const HniRayCaster caster(s.image, s.originM);
+  RayCastOptions full = s.options;
+  full.lodAuto = false;
+  EXPECT_NE(renderHni(caster, s.camera, s.options).colour, renderHni(caster, s.camera, full).colour);
+}
+
 TEST(GlMatchesCpu, CameraInsideTheBuilding) {
   Scene s = sampleScene("building", 480, 270);
   s.name = "building-inside";

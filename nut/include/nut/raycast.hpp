@@ -32,11 +32,11 @@ struct RayCastOptions {
   // Stop descending into a redirection cell whose projected size is below this many pixels and
   // use the visual summary of the face hit instead. 0 = full detail.
   double lodPx = 0.0;
+  // Cell steps and landings per ray; a ray that reaches the cap ends with kCappedColour.
+  int maxIterations = 512;
   // Level of detail from measured error (--lod auto): draw a redirection's target as its visual
   // summary where one pixel spans more than the footprint its record carries (version 2 files).
   bool lodAuto = false;
-  // Cell steps and landings per ray; a ray that reaches the cap ends with kCappedColour.
-  int maxIterations = 512;
 };
 
 // Levels of the traversal stack: deeper redirections are drawn as their visual summary.
