@@ -39,5 +39,6 @@ void addRenderMeshCommand(CLI::App& app, int& exitCode);
 void addCompareCommand(CLI::App& app, int& exitCode);
 void addConvertCommand(CLI::App& app, int& exitCode);
 void addGrammarCommand(CLI::App& app, int& exitCode);
+void addCityCommand(CLI::App& app, int& exitCode);
 
 }  // namespace nut::cli

@@ -10,7 +10,6 @@
 #include <set>
 #include <string>
 #include <thread>
-#include <unistd.h>
 #include <vector>
 
 #include <glm/vec3.hpp>
@@ -21,6 +20,7 @@
 #include <scene/city.hpp>
 
 #include "commands.hpp"
+#include "progress.hpp"
 
 namespace nut::cli {
 
@@ -58,40 +58,6 @@ CLI::Validator hniOrFolder() {
 PngEffort effortOf(const ConvertCliOptions& o) {
   return o.pngEffort == "small" ? PngEffort::Small : PngEffort::Smallest;
 }
-
-// A progress bar on stderr: redrawn in place on a terminal, one line per phase otherwise.
-class ProgressBar {
- public:
-  ProgressBar(bool enabled, std::string label)
-      : enabled_(enabled), tty_(isatty(fileno(stderr)) != 0), label_(std::move(label)) {}
-  ~ProgressBar() { finish(); }
-  void update(std::string_view phase, double fraction) {
-    if (!enabled_) return;
-    const int percent = static_cast<int>(100 * fraction);
-    if (phase == phase_ && (percent == percent_ || !tty_)) return;
-    if (phase != phase_ && !tty_)
-      std::fprintf(stderr, "convert: %s: %.*s\n", label_.c_str(), static_cast<int>(phase.size()), phase.data());
-    phase_ = std::string(phase);
-    percent_ = percent;
-    if (!tty_) return;
-    constexpr int kWidth = 30;
-    const int filled = kWidth * percent / 100;
-    std::fprintf(stderr, "\r%s %-8s [%s%s] %3d%%", label_.c_str(), phase_.c_str(),
-                 std::string(static_cast<std::size_t>(filled), '#').c_str(),
-                 std::string(static_cast<std::size_t>(kWidth - filled), '.').c_str(), percent);
-    drawn_ = true;
-  }
-  void finish() {
-    if (drawn_) std::fputc('\n', stderr);
-    drawn_ = false;
-  }
-
- private:
-  bool enabled_, tty_;
-  std::string label_, phase_;
-  int percent_ = -1;
-  bool drawn_ = false;
-};
 
 Result<WorldBox> parseBox(const std::string& text) {
   WorldBox b;
@@ -145,7 +111,7 @@ int convertOneBuilding(const ConvertCliOptions& o, scene::ObjContents& obj, conv
   if (!merged) return fail(o.input + ": " + merged.error().message, kInvalid);
   TriangleMesh mesh = std::move(*merged);
   mesh.name = name;
-  ProgressBar bar(!o.quiet, name);
+  ProgressBar bar(!o.quiet, "convert", name);
   options.progress = [&](std::string_view phase, double f) { bar.update(phase, f); };
   auto conversion = converter::convertMesh(std::move(mesh), options);
   if (conversion) bar.update("write", 0);  // Zopfli takes about a second per 150 KB of pixels
@@ -243,7 +209,7 @@ int convertCity(const ConvertCliOptions& o, scene::ObjContents& obj, const conve
   if (ec) return fail(o.output + ": cannot create folder (" + ec.message() + ")", kUnreadable);
   scene::CityManifest city;
   city.name = fs::path(o.input).stem().string();
-  ProgressBar bar(!o.quiet, city.name);
+  ProgressBar bar(!o.quiet, "convert", city.name);
   const std::vector<ConvertedBuilding> buildings = convertSideBySide(o, obj.objects, options, bar);
   bar.finish();
   nlohmann::json reports = nlohmann::json::array();

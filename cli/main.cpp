@@ -70,6 +70,7 @@ int main(int argc, char** argv) {
 #endif
   nut::cli::addCompareCommand(app, exitCode);
   nut::cli::addGrammarCommand(app, exitCode);
+  nut::cli::addCityCommand(app, exitCode);
 #if NUT_HAVE_CONVERTER
   nut::cli::addConvertCommand(app, exitCode);
 #endif

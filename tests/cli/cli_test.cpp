@@ -12,6 +12,8 @@
 #include <cstring>
 #include <filesystem>
 #include <regex>
+#include <set>
+#include <string_view>
 #include <string>
 #include <vector>
 
@@ -19,7 +21,9 @@
 
 #include <nut/hni.hpp>
 #include <nut/png_io.hpp>
+#include <nut/raycast.hpp>
 #include <scene/obj.hpp>
+#include <scene/scene.hpp>
 
 #include "cli_support.hpp"
 #include "test_files.hpp"
@@ -252,7 +256,7 @@ TEST(MainCli, NoCommandIsAUsageErrorAndEveryHelpHasAnExample) {
   expectOneErrorLine(nut(""), 2, "see nut --help");
   const CliRun help = nut("--help");
   EXPECT_EQ(help.exitCode, 0);
-  for (const char* command : {"info", "validate", "render", "export-mesh", "render-mesh", "compare", "grammar", "convert"}) {
+  for (const char* command : {"info", "validate", "render", "export-mesh", "render-mesh", "compare", "grammar", "city", "convert"}) {
     EXPECT_NE(help.stdoutText.find(std::string("  ") + command + " "), std::string::npos) << command;
     // Every command's help ends with an example of itself.
     const CliRun own = nut(std::string(command) + " --help");
@@ -314,11 +318,56 @@ TEST(GrammarCli, MeasuredLevelOfDetailIsWrittenAndRendered) {
                      "--lod");
 }
 
+// `nut city`: N distinct valid buildings and a manifest that places them on lots that do not
+// overlap, on the ground; the same seed gives the same bytes whatever the thread count, another
+// seed another city; a facade grammar or a zero count is refused with one line.
+TEST(CityCli, DistinctValidBuildingsOnLotsThatDoNotOverlap) {
+  constexpr int kCount = 24;
+  // The manifest names the city after its folder: the runs compared write folders of one name.
+  const std::string a = out("city-a") + "/city", b = out("city-b") + "/city", c = out("city-c") + "/city";
+  for (const char* dir : {"city-a", "city-b", "city-c"}) fs::remove_all(out(dir));
+  const CliRun r = nut("city --count 24 --out " + a + " --seed 5 --quiet");
+  ASSERT_EQ(r.exitCode, 0) << r.stderrText;
+  EXPECT_EQ(r.stderrText, "");
+  auto scene = scene::loadScene(a + "/city.json", {});
+  ASSERT_TRUE(scene) << scene.error().message;
+  ASSERT_EQ(scene->hnis.size(), static_cast<std::size_t>(kCount));
+  std::set<std::size_t> distinct;  // hashes of the pixels
+  std::vector<WorldBox> boxes;
+  for (const scene::PlacedHni& hni : scene->hnis) {
+    EXPECT_TRUE(validate(*hni.image).ok());
+    distinct.insert(std::hash<std::string_view>{}(std::string_view(
+        reinterpret_cast<const char*>(hni.image->pixels.data()), hni.image->pixels.size())));
+    boxes.push_back(HniRayCaster(*hni.image, hni.originM, hni.worldFromRoot).bounds());
+  }
+  EXPECT_EQ(distinct.size(), static_cast<std::size_t>(kCount)) << "every building its own HNI";
+  for (std::size_t i = 0; i < boxes.size(); ++i) {
+    EXPECT_NEAR(boxes[i].min.y, 0.0, 1e-3) << "building " << i << " stands on the ground";
+    for (std::size_t j = 0; j < i; ++j) {
+      bool apart = false;
+      for (int axis : {0, 2})
+        apart = apart || boxes[i].min[axis] >= boxes[j].max[axis] || boxes[j].min[axis] >= boxes[i].max[axis];
+      EXPECT_TRUE(apart) << "buildings " << j << " and " << i << " overlap";
+    }
+  }
+  ASSERT_EQ(nut("city --count 24 --out " + b + " --seed 5 --quiet --threads 1").exitCode, 0);
+  for (const char* file : {"city.json", "b00000.png", "b00023.png"})
+    EXPECT_EQ(testing::fileText(a + "/" + file), testing::fileText(b + "/" + file)) << file;
+  ASSERT_EQ(nut("city --count 24 --out " + c + " --seed 6 --quiet").exitCode, 0);
+  EXPECT_NE(testing::fileText(a + "/b00000.png"), testing::fileText(c + "/b00000.png"));
+
+  expectOneErrorLine(nut("city --count 2 --out " + out("city-d") + " --grammar " +
+                         source("samples/grammars/gbef_m1.grammar")),
+                     1, "needs a mass");
+  EXPECT_FALSE(fs::exists(out("city-d") + "/city.json"));
+  expectOneErrorLine(nut("city --count 0 --out " + out("city-d")), 2, "--count");
+}
+
 // A misspelt command is named, with the commands there are, on one line.
 TEST(MainCli, AnUnknownCommandIsNamedWithTheCommandsThereAre) {
   const CliRun r = nut("rendr samples/hni/building.png -o x.png");
   expectOneErrorLine(r, 2, "unknown command 'rendr'");
-  EXPECT_NE(r.stderrText.find("info, validate, render, export-mesh, render-mesh, compare, grammar, convert"), std::string::npos)
+  EXPECT_NE(r.stderrText.find("info, validate, render, export-mesh, render-mesh, compare, grammar, city, convert"), std::string::npos)
       << r.stderrText;
   expectOneErrorLine(nut("--json rendr"), 2, "unknown command 'rendr'");
 }

@@ -1,0 +1,47 @@
+// grammar/city.hpp — cities of distinct buildings from building grammars (`nut city`,
+// docs/CITY.md): which grammar, seed and start scope each building gets, on which lot of which
+// street it stands, and the building compiled and placed there.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
+
+#include <grammar/compile.hpp>
+#include <grammar/grammar.hpp>
+#include <nut/error.hpp>
+
+namespace nut::grammar {
+
+// A building of the plan: grammars[grammar] derived with `seed` from a start scope of `sizeM`,
+// centred on its lot and turned by yawDeg (0 or 180: its front towards its street).
+struct PlannedBuilding {
+  std::size_t grammar = 0;
+  std::uint64_t seed = 0;
+  glm::dvec3 sizeM{0.0};
+  glm::dvec2 lotCentreM{0.0};  // on the ground: world x, z
+  double yawDeg = 0;
+};
+
+// Streets along +x, 16 m wide; each block between two streets holds two rows of lots back to
+// back, 20 m deep, and a row runs up to 240 m before the next row starts. A lot is the building's
+// width plus 4 m. Each grammar's start scope (its @size, which it must have) is scaled per building
+// by 0.8 to 1.25 in width and depth and 0.7 to 1.6 in height; grammars are taken in turn.
+// Deterministic in (grammars' sizes, count, seed).
+std::vector<PlannedBuilding> planCity(const std::vector<Grammar>& grammars, std::size_t count, std::uint64_t seed);
+
+// A planned building compiled (with compileGrammar's lod), and where its root block's origin
+// stands in the world. A start scope the grammar cannot fill (parts that do not fit) is redrawn
+// from the building's seed, up to 8 times, and then the grammar's own @size is used.
+struct CityBuilding {
+  CompiledGrammar compiled;
+  glm::dvec3 positionM{0.0};
+  double yawDeg = 0;
+};
+Result<CityBuilding> buildCityBuilding(const Grammar& g, const PlannedBuilding& plan,
+                                       const std::optional<LodMeasureOptions>& lod = std::nullopt);
+
+}  // namespace nut::grammar

@@ -1,0 +1,83 @@
+// Cities of distinct buildings from building grammars (grammar/city.hpp).
+#include <grammar/city.hpp>
+
+#include <algorithm>
+#include <random>
+
+
+namespace nut::grammar {
+
+namespace {
+
+constexpr double kStreetWidthM = 16.0;
+constexpr double kRowDepthM = 20.0;
+constexpr double kRowLengthM = 240.0;
+constexpr double kLotGapM = 4.0;
+constexpr int kSizeRedraws = 8;
+
+// The start scope of a building: the grammar's @size scaled per axis.
+glm::dvec3 drawSize(const glm::dvec3& base, std::mt19937_64& random) {
+  std::uniform_real_distribution<double> footprint(0.8, 1.25), height(0.7, 1.6);
+  const double width = footprint(random), tall = height(random), depth = footprint(random);
+  return {base.x * width, base.y * tall, base.z * depth};
+}
+
+}  // namespace
+
+std::vector<PlannedBuilding> planCity(const std::vector<Grammar>& grammars, std::size_t count, std::uint64_t seed) {
+  std::vector<PlannedBuilding> plan;
+  if (grammars.empty()) return plan;
+  std::mt19937_64 random(seed);
+  int row = 0;
+  double along = 0;
+  for (std::size_t i = 0; i < count; ++i) {
+    PlannedBuilding b;
+    b.grammar = i % grammars.size();
+    b.seed = random();
+    b.sizeM = drawSize(grammars[b.grammar].size.value_or(glm::dvec3(10.0)), random);
+    const double lot = b.sizeM.x + kLotGapM;
+    if (along + lot > kRowLengthM && along > 0) {
+      ++row;
+      along = 0;
+    }
+    // Row 2k faces the street before its block (-z), row 2k + 1 the one after it (+z).
+    const int block = row / 2;
+    const bool back = row % 2 == 1;
+    const double rowCentre = kStreetWidthM + block * (2 * kRowDepthM + kStreetWidthM) + (back ? 1.5 : 0.5) * kRowDepthM;
+    b.lotCentreM = {along + lot / 2, rowCentre};
+    b.yawDeg = back ? 180.0 : 0.0;
+    along += lot;
+    plan.push_back(b);
+  }
+  return plan;
+}
+
+Result<CityBuilding> buildCityBuilding(const Grammar& g, const PlannedBuilding& plan,
+                                       const std::optional<LodMeasureOptions>& lod) {
+  DeriveOptions options;
+  options.seed = plan.seed;
+  options.sizeM = plan.sizeM;
+  std::mt19937_64 redraw(plan.seed);
+  auto compiled = compileGrammar(g, options, lod);
+  for (int attempt = 0; !compiled && attempt < kSizeRedraws; ++attempt) {
+    options.sizeM = drawSize(g.size.value_or(plan.sizeM), redraw);
+    compiled = compileGrammar(g, options, lod);
+  }
+  if (!compiled) {
+    options.sizeM = g.size;
+    compiled = compileGrammar(g, options, lod);
+  }
+  if (!compiled) return compiled.error();
+  CityBuilding out;
+  out.compiled = std::move(*compiled);
+  out.yawDeg = plan.yawDeg;
+  // The root block's box, centred on the lot: world = position + Yaw * local, and a turn of 0 or
+  // 180 degrees about y maps the box's centre (S / 2) to (+-S.x / 2, S.y / 2, +-S.z / 2).
+  const glm::dvec3 size = out.compiled.hierarchy.blocks[out.compiled.hierarchy.root].sizeM();
+  const double sign = plan.yawDeg == 0.0 ? 1.0 : -1.0;
+  out.positionM = {plan.lotCentreM.x - sign * size.x / 2, out.compiled.originM.y,
+                   plan.lotCentreM.y - sign * size.z / 2};
+  return out;
+}
+
+}  // namespace nut::grammar
