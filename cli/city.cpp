@@ -43,6 +43,7 @@ struct WrittenBuilding {
   int exitCode = kOk;
   glm::dvec3 positionM{0.0};
   double yawDeg = 0;
+  WorldBox boundsM;
   std::size_t pixelsHash = 0, pngBytes = 0;
 };
 
@@ -85,6 +86,7 @@ WrittenBuilding writeBuilding(const CityCliOptions& o, const std::vector<grammar
   w.pngBytes = static_cast<std::size_t>(fs::file_size(path, ec));
   w.positionM = built->positionM;
   w.yawDeg = built->yawDeg;
+  w.boundsM = built->boundsM;
   w.pixelsHash = std::hash<std::string_view>{}(
       std::string_view(reinterpret_cast<const char*>(image.pixels.data()), image.pixels.size()));
   return w;
@@ -143,7 +145,7 @@ int run(const CityCliOptions& o) {
     if (w.exitCode != kOk) return fail(w.error, w.exitCode);
     firstWithHash.emplace(w.pixelsHash, i);
     pngBytes += w.pngBytes;
-    city.buildings.push_back({buildingName(i), buildingName(i) + ".png", "", w.positionM, w.yawDeg});
+    city.buildings.push_back({buildingName(i), buildingName(i) + ".png", "", w.positionM, w.yawDeg, w.boundsM});
   }
   const std::string manifest = (fs::path(o.out) / "city.json").string();
   if (Status s = scene::writeCityJson(manifest, city); !s) return fail(s.error().message, kUnreadable);

@@ -206,6 +206,10 @@ Result<PngFile> readPng(const std::string& path, PngKind kind) {
     if (!in) return Error{path + ": cannot open (" + std::strerror(errno) + ")"};
     bytes.assign(std::istreambuf_iterator<char>(in), {});
   }
+  return readPngBytes(path, std::move(bytes), kind);
+}
+
+Result<PngFile> readPngBytes(const std::string& path, std::vector<std::uint8_t> bytes, PngKind kind) {
   if (Status s = checkPngStructure(path, bytes, kind); !s) return s.error();
   const auto decode = std::make_unique<PngDecode>();
   if (Status s = decodePng(path, bytes, *decode); !s) return s.error();

@@ -49,6 +49,9 @@ std::string cityJson(const CityManifest& city) {
                         {"position_m", {b.positionM.x, b.positionM.y, b.positionM.z}},
                         {"yaw_deg", b.yawDeg}};
     if (!b.complement.empty()) j["complement"] = b.complement;
+    if (b.boundsM)
+      j["bounds_m"] = {{b.boundsM->min.x, b.boundsM->min.y, b.boundsM->min.z},
+                       {b.boundsM->max.x, b.boundsM->max.y, b.boundsM->max.z}};
     buildings.push_back(std::move(j));
   }
   const nlohmann::json j = {{"format", "nut-city"}, {"version", kCityVersion}, {"name", city.name}, {"units", "m"},
@@ -106,6 +109,23 @@ Result<CityManifest> parseCityJson(const std::string& text, const std::string& p
       if (!b["yaw_deg"].is_number() || !std::isfinite(b["yaw_deg"].get<double>()))
         return Error{where + " (" + out.name + "): \"yaw_deg\" must be a finite number"};
       out.yawDeg = b["yaw_deg"].get<double>();
+    }
+    if (b.contains("bounds_m")) {
+      const nlohmann::json& box = b["bounds_m"];
+      const auto corner = [](const nlohmann::json& c, glm::dvec3& point) {
+        if (!c.is_array() || c.size() != 3) return false;
+        for (int a = 0; a < 3; ++a) {
+          const nlohmann::json& v = c[static_cast<std::size_t>(a)];
+          if (!v.is_number() || !std::isfinite(v.get<double>())) return false;
+          point[a] = v.get<double>();
+        }
+        return true;
+      };
+      WorldBox bounds;
+      if (!box.is_array() || box.size() != 2 || !corner(box[0], bounds.min) || !corner(box[1], bounds.max) ||
+          !(bounds.min.x <= bounds.max.x && bounds.min.y <= bounds.max.y && bounds.min.z <= bounds.max.z))
+        return Error{where + " (" + out.name + "): \"bounds_m\" must be two corners of three finite numbers, min <= max"};
+      out.boundsM = bounds;
     }
     city.buildings.push_back(std::move(out));
   }

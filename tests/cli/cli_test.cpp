@@ -22,6 +22,7 @@
 #include <nut/hni.hpp>
 #include <nut/png_io.hpp>
 #include <nut/raycast.hpp>
+#include <scene/city.hpp>
 #include <scene/obj.hpp>
 #include <scene/scene.hpp>
 
@@ -332,6 +333,8 @@ TEST(CityCli, DistinctValidBuildingsOnLotsThatDoNotOverlap) {
   auto scene = scene::loadScene(a + "/city.json", {});
   ASSERT_TRUE(scene) << scene.error().message;
   ASSERT_EQ(scene->hnis.size(), static_cast<std::size_t>(kCount));
+  auto manifest = scene::readCityJson(a + "/city.json");
+  ASSERT_TRUE(manifest) << manifest.error().message;
   std::set<std::size_t> distinct;  // hashes of the pixels
   std::vector<WorldBox> boxes;
   for (const scene::PlacedHni& hni : scene->hnis) {
@@ -339,6 +342,13 @@ TEST(CityCli, DistinctValidBuildingsOnLotsThatDoNotOverlap) {
     distinct.insert(std::hash<std::string_view>{}(std::string_view(
         reinterpret_cast<const char*>(hni.image->pixels.data()), hni.image->pixels.size())));
     boxes.push_back(HniRayCaster(*hni.image, hni.originM, hni.worldFromRoot).bounds());
+    // The manifest's box is the placed root block's, known before the image is read.
+    const auto& written = manifest->buildings[boxes.size() - 1].boundsM;
+    ASSERT_TRUE(written);
+    for (int axis = 0; axis < 3; ++axis) {
+      EXPECT_NEAR(written->min[axis], boxes.back().min[axis], 1e-6);
+      EXPECT_NEAR(written->max[axis], boxes.back().max[axis], 1e-6);
+    }
   }
   EXPECT_EQ(distinct.size(), static_cast<std::size_t>(kCount)) << "every building its own HNI";
   for (std::size_t i = 0; i < boxes.size(); ++i) {

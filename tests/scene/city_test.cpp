@@ -29,7 +29,7 @@ std::string writeFile(const std::string& name, const std::string& text) {
 
 TEST(City, ManifestRoundTripsAndRejectsPathsOutside) {
   CityManifest city{"block", {{"a", "a.png", "a.complement.obj", {2678219.125, 395.5, -1243078.25}, 0},
-                              {"b", "sub/b.png", "", {1, 2, 3}, 90}}};
+                              {"b", "sub/b.png", "", {1, 2, 3}, 90, WorldBox{{1, 2, -7}, {11, 22, 3}}}}};
   const std::string path = writeFile("city.json", cityJson(city));
   auto back = readCityJson(path);
   ASSERT_TRUE(back.ok()) << back.error().message;
@@ -38,6 +38,8 @@ TEST(City, ManifestRoundTripsAndRejectsPathsOutside) {
   EXPECT_EQ(back->buildings[1].hni, "sub/b.png");
   EXPECT_EQ(back->buildings[1].yawDeg, 90);
   EXPECT_TRUE(back->buildings[1].complement.empty());
+  EXPECT_FALSE(back->buildings[0].boundsM);
+  EXPECT_EQ(back->buildings[1].boundsM, city.buildings[1].boundsM);
 
   const std::string outside = writeFile("outside.json", R"({"format": "nut-city", "version": 1, "buildings": [
       {"name": "x", "hni": "../x.png", "position_m": [0, 0, 0]}]})");
@@ -72,6 +74,8 @@ TEST(City, EachBrokenFieldIsNamed) {
       {manifest("1", R"("name": "a", "hni": "a.png", "position_m": [1, "2", 3])"),
        "building 0 (a): \"position_m\" must be three finite numbers"},
       {manifest("1", good + R"(, "yaw_deg": "north")"), "building 0 (a): \"yaw_deg\" must be a finite number"},
+      {manifest("1", good + R"(, "bounds_m": [[0, 0, 0], [1, 1]])"), "building 0 (a): \"bounds_m\" must be two corners"},
+      {manifest("1", good + R"(, "bounds_m": [[0, 5, 0], [1, 1, 1]])"), "min <= max"},
   };
   ASSERT_TRUE(readCityJson(writeFile("good-city.json", manifest("1", good))).ok());
   for (const auto& [text, message] : cases) {

@@ -4,6 +4,10 @@
 #include <algorithm>
 #include <random>
 
+#include <glm/common.hpp>
+
+#include <nut/units.hpp>
+
 
 namespace nut::grammar {
 
@@ -73,10 +77,14 @@ Result<CityBuilding> buildCityBuilding(const Grammar& g, const PlannedBuilding& 
   out.yawDeg = plan.yawDeg;
   // The root block's box, centred on the lot: world = position + Yaw * local, and a turn of 0 or
   // 180 degrees about y maps the box's centre (S / 2) to (+-S.x / 2, S.y / 2, +-S.z / 2).
-  const glm::dvec3 size = out.compiled.hierarchy.blocks[out.compiled.hierarchy.root].sizeM();
+  // The size as encoded (whole millimetres), which is what a renderer of the HNI places.
+  glm::dvec3 size = out.compiled.hierarchy.blocks[out.compiled.hierarchy.root].sizeM();
+  for (int a = 0; a < 3; ++a) size[a] = snapToUnits(size[a]);
   const double sign = plan.yawDeg == 0.0 ? 1.0 : -1.0;
   out.positionM = {plan.lotCentreM.x - sign * size.x / 2, out.compiled.originM.y,
                    plan.lotCentreM.y - sign * size.z / 2};
+  const glm::dvec3 farCorner = out.positionM + glm::dvec3(sign * size.x, size.y, sign * size.z);
+  out.boundsM = {glm::min(out.positionM, farCorner), glm::max(out.positionM, farCorner)};
   return out;
 }
 

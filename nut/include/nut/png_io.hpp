@@ -54,4 +54,7 @@ enum class PngKind { Hni, Render };
 // 4096x4096" (for a render: "a render has at most 16384x16384").
 Result<PngFile> readPng(const std::string& path, PngKind kind = PngKind::Hni);
 
+// The same on the bytes of a PNG already in memory (a download); `name` names it in errors.
+Result<PngFile> readPngBytes(const std::string& name, std::vector<std::uint8_t> bytes, PngKind kind = PngKind::Hni);
+
 }  // namespace nut

@@ -3,11 +3,13 @@
 // holding several objects is converted into a folder; the streaming viewer reads it.
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 
 #include <glm/vec3.hpp>
 
+#include <nut/camera.hpp>
 #include <nut/error.hpp>
 
 namespace nut::scene {
@@ -18,6 +20,9 @@ struct CityBuilding {
   std::string complement;   // OBJ relative to the manifest's folder; empty if none
   glm::dvec3 positionM{0.0};  // world position of the HNI's root block origin (double precision)
   double yawDeg = 0;        // rotation about +y (counter-clockwise seen from above), degrees
+  // World box of the placed HNI's root block, when the writer knows it: a viewer culls and draws
+  // a proxy for the building before its image arrives.
+  std::optional<WorldBox> boundsM;
 };
 
 struct CityManifest {

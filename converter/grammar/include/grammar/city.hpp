@@ -12,6 +12,7 @@
 
 #include <grammar/compile.hpp>
 #include <grammar/grammar.hpp>
+#include <nut/camera.hpp>
 #include <nut/error.hpp>
 
 namespace nut::grammar {
@@ -40,6 +41,7 @@ struct CityBuilding {
   CompiledGrammar compiled;
   glm::dvec3 positionM{0.0};
   double yawDeg = 0;
+  WorldBox boundsM;  // of the placed root block
 };
 Result<CityBuilding> buildCityBuilding(const Grammar& g, const PlannedBuilding& plan,
                                        const std::optional<LodMeasureOptions>& lod = std::nullopt);
