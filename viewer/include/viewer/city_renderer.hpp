@@ -1,0 +1,92 @@
+// viewer/city_renderer.hpp — a city manifest streamed and drawn frame by frame: the buildings the
+// camera can see are requested nearest first from the loader threads, uploaded into atlas pages in
+// bounded slices per frame, and ray-cast front to back, one instanced draw per page. The frame
+// never waits for a file. What each frame skips is counted (docs/VIEWER.md).
+#pragma once
+
+#include <cstddef>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <glm/mat3x3.hpp>
+#include <glm/vec3.hpp>
+
+#include <nut/camera.hpp>
+#include <nut/error.hpp>
+#include <nut/raycast.hpp>
+#include <scene/city.hpp>
+
+#include <viewer/atlas_pages.hpp>
+#include <viewer/city_loader.hpp>
+#include <viewer/frame_view.hpp>
+#include <viewer/hni_renderer.hpp>
+
+namespace nut::viewer {
+
+struct CityRendererOptions {
+  bool frustumCulling = true;
+  bool frontToBack = true;
+  int loaderThreads = 2;
+  std::size_t maxOutstanding = 16;                 // requests in the loaders' hands at once
+  std::size_t uploadBytesPerFrame = 4u << 20;      // at least one HNI a frame is uploaded
+  int atlasPageSize = 4096;
+  int maxAtlasPages = 16;
+};
+
+struct CityFrameStats {
+  std::size_t known = 0;           // buildings in the manifest
+  std::size_t loaded = 0;          // in the atlas
+  std::size_t failed = 0;          // missing, unreadable, corrupt or invalid: never drawn
+  std::size_t drawn = 0;           // ray-cast this frame
+  std::size_t culledByFrustum = 0; // outside the view (known boxes only)
+  std::size_t waiting = 0;         // visible, not loaded yet
+  std::size_t uploaded = 0;        // HNIs uploaded this frame
+  std::size_t bytesStreamed = 0;   // fetched so far
+  std::size_t atlasBytes = 0;
+  std::vector<std::string> newFailures;  // this frame's, one message each
+};
+
+class CityRenderer {
+ public:
+  // `base` is the manifest's folder (or URL prefix): a building's location is base + "/" + hni.
+  CityRenderer(const Gl& gl, const HniRenderer& hniRenderer, scene::CityManifest city, std::string base, Fetch fetch,
+               const CityRendererOptions& options);
+
+  // Takes what the loaders finished, uploads a slice, requests what the camera needs next and
+  // draws into the bound framebuffer (its depth test and blending as HniRenderer::draw).
+  Status drawFrame(const Camera& camera, const RayCastOptions& options, CityFrameStats& stats);
+
+  // No building left to load that the last frame could see, and nothing in the loaders' hands.
+  bool settled() const { return settled_; }
+
+ private:
+  enum class State { Unrequested, Requested, Loaded, Failed };
+  struct Building {
+    State state = State::Unrequested;
+    glm::dvec3 originM{0.0};
+    glm::dmat3 worldFromRoot{1.0};
+    std::optional<WorldBox> bounds;  // the manifest's until loaded, then the image's
+    AtlasSlot slot;
+  };
+  void receive(CityFrameStats& stats);
+
+  const Gl* gl_;
+  const HniRenderer* hniRenderer_;
+  scene::CityManifest city_;
+  std::string base_;
+  CityRendererOptions options_;
+  std::vector<Building> buildings_;
+  std::vector<LoadedHni> uploadQueue_;  // decoded, waiting for their frame's slice
+  AtlasPages pages_;
+  CityLoader loader_;
+  std::size_t bytesStreamed_ = 0, loaded_ = 0, failed_ = 0;
+  bool settled_ = false;
+};
+
+// Whether any part of the box may lie in the camera's view (its four side planes and near and
+// far): false only when all eight corners are outside one plane.
+bool mayBeVisible(const WorldBox& box, const FrameView& view);
+
+}  // namespace nut::viewer
