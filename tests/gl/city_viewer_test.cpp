@@ -6,10 +6,16 @@
 // the rest of the city is drawn. On failure <name>.diff.png is written to tests/gl/output/city.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <chrono>
+#include <csignal>
 #include <filesystem>
 #include <fstream>
 #include <string>
 #include <vector>
+
+#include <sys/wait.h>
+#include <unistd.h>
 
 #include <grammar/city.hpp>
 #include <nut/image_compare.hpp>
@@ -18,6 +24,7 @@
 #include <scene/scene.hpp>
 #include <scene/scene_render.hpp>
 #include <viewer/city_renderer.hpp>
+#include <viewer/http_fetch.hpp>
 #include <viewer/render_target.hpp>
 
 #include "gl_test_support.hpp"
@@ -76,11 +83,15 @@ Camera street() {
 struct Streamed {
   Image image;
   CityFrameStats stats;
-  int frames = 0;
+  std::vector<double> frameMs;       // every frame, the first (which builds the programs) included
+  std::size_t settledAtFrame = 0;
+  std::vector<std::string> failures;
 };
 
-// Draws frames of one camera until the city has streamed in.
-Streamed stream(const fs::path& manifest, const Camera& camera, const CityRendererOptions& options) {
+// Draws frames of one camera until the city has streamed in from `base` through `fetch`, then
+// `extraFrames` more.
+Streamed stream(const scene::CityManifest& city, const std::string& base, const Fetch& fetch, const Camera& camera,
+                const CityRendererOptions& options, int extraFrames = 0) {
   Streamed out;
   auto context = createContext(Backend::OSMesa);
   if (!context) {
@@ -89,17 +100,17 @@ Streamed stream(const fs::path& manifest, const Camera& camera, const CityRender
   }
   const ShaderLibrary library = ShaderLibrary::fromEnvironment();
   auto hni = HniRenderer::create(**context, library);
-  auto city = scene::readCityJson(manifest.string());
-  if (!hni || !city) {
-    ADD_FAILURE() << "renderer or manifest";
+  if (!hni) {
+    ADD_FAILURE() << hni.error().message;
     return out;
   }
   const Gl& gl = (*context)->gl();
   auto target = RenderTarget::create(gl, camera.width, camera.height);
-  CityRenderer renderer(gl, *hni, *city, manifest.parent_path().string(), localFiles(), options);
+  CityRenderer renderer(gl, *hni, city, base, fetch, options);
   RayCastOptions cast;
   cast.lookup = Lookup::Exact;
-  do {
+  const auto frame = [&] {
+    const auto start = std::chrono::steady_clock::now();
     target->bind();
     gl.ClearColor(kBackground[0] / 255.0f, kBackground[1] / 255.0f, kBackground[2] / 255.0f, 1.0f);
     gl.ClearDepth(1.0);
@@ -107,11 +118,28 @@ Streamed stream(const fs::path& manifest, const Camera& camera, const CityRender
     gl.Clear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
     const Status s = renderer.drawFrame(camera, cast, out.stats);
     EXPECT_TRUE(s) << s.error().message;
-    ++out.frames;
-  } while (!renderer.settled() && out.frames < 5000);
-  EXPECT_TRUE(renderer.settled()) << "still streaming after " << out.frames << " frames";
+    gl.Finish();
+    out.frameMs.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
+    out.failures.insert(out.failures.end(), out.stats.newFailures.begin(), out.stats.newFailures.end());
+  };
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+  do frame();
+  while (!renderer.settled() && std::chrono::steady_clock::now() < deadline);
+  EXPECT_TRUE(renderer.settled()) << "still streaming after " << out.frameMs.size() << " frames";
+  out.settledAtFrame = out.frameMs.size();
+  for (int f = 0; f < extraFrames; ++f) frame();
   out.image = target->readColour();
   return out;
+}
+
+scene::CityManifest manifestAt(const fs::path& path) {
+  auto city = scene::readCityJson(path.string());
+  EXPECT_TRUE(city) << city.error().message;
+  return city ? *city : scene::CityManifest{};
+}
+
+Streamed stream(const fs::path& manifest, const Camera& camera, const CityRendererOptions& options) {
+  return stream(manifestAt(manifest), manifest.parent_path().string(), localFiles(), camera, options);
 }
 
 Image cpuRender(const fs::path& manifest, const Camera& camera) {
@@ -142,7 +170,7 @@ TEST_F(StreamedCity, MatchesTheCpuCity) {
   const Streamed gl = stream(manifest, overview(), {});
   EXPECT_EQ(gl.stats.loaded, kBuildings);
   EXPECT_EQ(gl.stats.failed, 0u);
-  EXPECT_GT(gl.frames, 1) << "the uploads are spread over frames";
+  EXPECT_GT(gl.frameMs.size(), 1u) << "the uploads are spread over frames";
   expectAgree("overview", cpuRender(manifest, overview()), gl.image, kMinWithinPct);
 }
 
@@ -187,6 +215,118 @@ TEST_F(StreamedCity, BrokenFilesAreCountedAndTheRestIsDrawn) {
   city->buildings.erase(city->buildings.begin() + 1, city->buildings.begin() + 4);
   ASSERT_TRUE(scene::writeCityJson((broken / "rest.json").string(), *city));
   expectAgree("broken", cpuRender(broken / "rest.json", overview()), gl.image, kMinWithinPct);
+}
+
+// tests/gl/http_server.py on loopback, started for a test and stopped after it.
+class HttpServer {
+ public:
+  explicit HttpServer(const fs::path& directory, const std::vector<std::string>& extra = {}) {
+    int out[2];
+    if (pipe(out) != 0) return;
+    pid_ = fork();
+    if (pid_ == 0) {
+      dup2(out[1], STDOUT_FILENO);
+      close(out[0]);
+      close(out[1]);
+      std::vector<std::string> args = {"python3", std::string(NUT_SOURCE_DIR) + "/tests/gl/http_server.py",
+                                       "--directory", directory.string()};
+      args.insert(args.end(), extra.begin(), extra.end());
+      std::vector<char*> argv;
+      for (std::string& a : args) argv.push_back(a.data());
+      argv.push_back(nullptr);
+      execvp("python3", argv.data());
+      _exit(127);
+    }
+    close(out[1]);
+    // The port's line, once it listens; the pipe stays open while the server runs, which may write
+    // the line in more than one piece.
+    output_ = out[0];
+    std::string line;
+    char c = 0;
+    while (read(output_, &c, 1) == 1 && c != '\n') line += c;
+    port_ = std::atoi(line.c_str());
+  }
+  ~HttpServer() {
+    if (pid_ > 0) {
+      kill(pid_, SIGTERM);
+      waitpid(pid_, nullptr, 0);
+    }
+    if (output_ >= 0) close(output_);
+  }
+  HttpServer(const HttpServer&) = delete;
+  HttpServer& operator=(const HttpServer&) = delete;
+  std::string url(const std::string& path) const { return "http://127.0.0.1:" + std::to_string(port_) + "/" + path; }
+  bool running() const { return port_ > 0; }
+
+ private:
+  pid_t pid_ = -1;
+  int output_ = -1;
+  int port_ = 0;
+};
+
+double median(std::vector<double> values) {
+  std::sort(values.begin(), values.end());
+  return values.empty() ? 0 : values[values.size() / 2];
+}
+
+TEST_F(StreamedCity, HttpAndLocalFilesGiveTheSameFrame) {
+  const HttpServer server(cityDir().parent_path());
+  ASSERT_TRUE(server.running());
+  const scene::CityManifest city = manifestAt(cityDir() / "city.json");
+  const Streamed local = stream(city, cityDir().string(), localFiles(), overview(), {});
+  const Streamed http = stream(city, server.url("city"), httpFetch(), overview(), {});
+  EXPECT_EQ(http.stats.loaded, kBuildings);
+  EXPECT_EQ(http.stats.bytesStreamed, local.stats.bytesStreamed);
+  EXPECT_EQ(http.image, local.image);
+}
+
+TEST_F(StreamedCity, HttpErrorsAreCountedAndTheRestIsDrawn) {
+  const fs::path root = gltest::outputDir("city") / "http-broken";
+  fs::remove_all(root);
+  fs::create_directories(root);
+  fs::copy(cityDir(), root / "city");
+  fs::resize_file(root / "city" / "b6.png", 100);  // truncated
+  fs::remove(root / "city" / "b7.png");            // 404 from the server itself
+  const HttpServer server(root, {"--status", "/city/b4.png=404", "--status", "/city/b5.png=500"});
+  ASSERT_TRUE(server.running());
+  scene::CityManifest city = manifestAt(root / "city" / "city.json");
+  const Streamed http = stream(city, server.url("city"), httpFetch(), overview(), {});
+  EXPECT_EQ(http.stats.failed, 4u);
+  EXPECT_EQ(http.stats.loaded, kBuildings - 4);
+  const auto said = [&](const std::string& text) {
+    return std::any_of(http.failures.begin(), http.failures.end(),
+                       [&](const std::string& f) { return f.find(text) != std::string::npos; });
+  };
+  EXPECT_TRUE(said("b4: " + server.url("city/b4.png") + ": HTTP 404"));
+  EXPECT_TRUE(said("b5: " + server.url("city/b5.png") + ": HTTP 500"));
+  EXPECT_TRUE(said("b7: " + server.url("city/b7.png") + ": HTTP 404"));
+  EXPECT_TRUE(said("b6: "));
+  city.buildings.erase(city.buildings.begin() + 4, city.buildings.begin() + 8);
+  ASSERT_TRUE(scene::writeCityJson((root / "city" / "rest.json").string(), city));
+  expectAgree("http-broken", cpuRender(root / "city" / "rest.json", overview()), http.image, kMinWithinPct);
+}
+
+// A server that waits half a second before each file, seen from the street (ten buildings to
+// fetch): the frames while they stream in take at most twice the frames after (medians; the first
+// frame, which builds the programs, left out), and nine in ten take less than one download's
+// wait, which a frame that waited for a download could not.
+TEST_F(StreamedCity, ASlowServerDoesNotSlowTheFrames) {
+  constexpr double kDelaySeconds = 0.5;
+  const HttpServer server(cityDir().parent_path(), {"--delay", std::to_string(kDelaySeconds)});
+  ASSERT_TRUE(server.running());
+  const Streamed http =
+      stream(manifestAt(cityDir() / "city.json"), server.url("city"), httpFetch(), street(), {}, 10);
+  ASSERT_GT(http.settledAtFrame, 10u) << "the downloads should take many frames";
+  std::vector<double> streaming(http.frameMs.begin() + 1, http.frameMs.begin() + static_cast<std::ptrdiff_t>(http.settledAtFrame));
+  const std::vector<double> loaded(http.frameMs.begin() + static_cast<std::ptrdiff_t>(http.settledAtFrame), http.frameMs.end());
+  EXPECT_LE(median(streaming), 2.0 * median(loaded))
+      << "streaming " << median(streaming) << " ms, loaded " << median(loaded) << " ms";
+  std::sort(streaming.begin(), streaming.end());
+  const double ninetieth = streaming[streaming.size() * 9 / 10];
+  EXPECT_LT(ninetieth, 1000 * kDelaySeconds) << "frames wait for downloads";
+  RecordProperty("streaming_median_ms", std::to_string(median(streaming)));
+  RecordProperty("streaming_90th_ms", std::to_string(ninetieth));
+  RecordProperty("loaded_median_ms", std::to_string(median(loaded)));
 }
 
 }  // namespace

@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
-#include <filesystem>
 #include <memory>
 #include <string>
 #include <vector>
@@ -17,10 +16,9 @@
 #include <scene/city.hpp>
 #include <viewer/city_renderer.hpp>
 #include <viewer/context.hpp>
+#include <viewer/http_fetch.hpp>
 #include <viewer/render_target.hpp>
 #include <viewer/shader_library.hpp>
-
-namespace fs = std::filesystem;
 
 namespace {
 
@@ -94,8 +92,14 @@ int run(const ViewerOptions& o) {
   if (std::sscanf(o.size.c_str(), "%dx%d%c", &width, &height, &tail) != 2 || width < 1 || height < 1 ||
       width > 16384 || height > 16384)
     return fail("--size '" + o.size + "': expected WxH, 1 to 16384 each", kUsage);
-  auto city = nut::scene::readCityJson(o.city);
+  // A path or a URL: the manifest through the same fetch as its buildings.
+  const nut::viewer::Fetch fetch = nut::viewer::fetchFor(o.city);
+  auto manifestBytes = fetch(o.city);
+  if (!manifestBytes) return fail(manifestBytes.error().message, kUsage);
+  auto city = nut::scene::parseCityJson(std::string(manifestBytes->begin(), manifestBytes->end()), o.city);
   if (!city) return fail(city.error().message, kInvalid);
+  const std::size_t slash = o.city.rfind('/');
+  const std::string base = slash == std::string::npos ? "." : o.city.substr(0, slash);
   if (city->buildings.empty()) return fail(o.city + ": no buildings", kInvalid);
 
   std::vector<Keyframe> keys;
@@ -139,8 +143,7 @@ int run(const ViewerOptions& o) {
   options.frustumCulling = !o.noFrustumCulling;
   options.frontToBack = !o.noFrontToBack;
   options.loaderThreads = std::max(1, o.threads);
-  nut::viewer::CityRenderer renderer(gl, *hni, *city, fs::path(o.city).parent_path().string(),
-                                     nut::viewer::localFiles(), options);
+  nut::viewer::CityRenderer renderer(gl, *hni, *city, base, fetch, options);
   nut::RayCastOptions cast;
   cast.lookup = o.lookup == "exact" ? nut::Lookup::Exact : nut::Lookup::Heuristic;
 
@@ -206,7 +209,8 @@ int run(const ViewerOptions& o) {
 int main(int argc, char** argv) {
   CLI::App app{"nut-viewer: stream a PNG city (city.json) into the GL ray caster"};
   ViewerOptions o;
-  app.add_option("city", o.city, "City manifest (city.json)")->required();
+  app.add_option("city", o.city, "City manifest: a path, or an http(s):// URL (its buildings are fetched beside it)")
+      ->required();
   app.add_flag("--headless", o.headless, "Render offscreen (OSMesa or EGL) instead of a window");
   app.add_option("--size", o.size, "Frame size WxH")->capture_default_str();
   app.add_option("--camera-path", o.cameraPath, "Camera path JSON (docs/VIEWER.md); default: the city fitted");
