@@ -10,6 +10,7 @@
 #include <chrono>
 #include <csignal>
 #include <filesystem>
+#include <numbers>
 #include <fstream>
 #include <string>
 #include <vector>
@@ -85,14 +86,16 @@ struct Streamed {
   CityFrameStats stats;
   std::vector<double> frameMs;       // every frame, the first (which builds the programs) included
   std::size_t settledAtFrame = 0;
+  std::size_t maxAtlasBytes = 0;
   std::vector<std::string> failures;
 };
 
-// Draws frames of one camera until the city has streamed in from `base` through `fetch`, then
-// `extraFrames` more.
-Streamed stream(const scene::CityManifest& city, const std::string& base, const Fetch& fetch, const Camera& camera,
-                const CityRendererOptions& options, int extraFrames = 0) {
+// Draws a frame from each camera of the path, then frames of the last one until the city has
+// streamed in from `base` through `fetch`, then `extraFrames` more.
+Streamed stream(const scene::CityManifest& city, const std::string& base, const Fetch& fetch,
+                const std::vector<Camera>& path, const CityRendererOptions& options, int extraFrames = 0) {
   Streamed out;
+  const Camera& camera = path.back();
   auto context = createContext(Backend::OSMesa);
   if (!context) {
     ADD_FAILURE() << context.error().message;
@@ -109,25 +112,27 @@ Streamed stream(const scene::CityManifest& city, const std::string& base, const 
   CityRenderer renderer(gl, *hni, city, base, fetch, options);
   RayCastOptions cast;
   cast.lookup = Lookup::Exact;
-  const auto frame = [&] {
+  const auto frame = [&](const Camera& view) {
     const auto start = std::chrono::steady_clock::now();
     target->bind();
     gl.ClearColor(kBackground[0] / 255.0f, kBackground[1] / 255.0f, kBackground[2] / 255.0f, 1.0f);
     gl.ClearDepth(1.0);
     gl.DepthMask(GL_TRUE);
     gl.Clear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
-    const Status s = renderer.drawFrame(camera, cast, out.stats);
+    const Status s = renderer.drawFrame(view, cast, out.stats);
     EXPECT_TRUE(s) << s.error().message;
     gl.Finish();
+    out.maxAtlasBytes = std::max(out.maxAtlasBytes, out.stats.atlasBytes);
     out.frameMs.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
     out.failures.insert(out.failures.end(), out.stats.newFailures.begin(), out.stats.newFailures.end());
   };
+  for (std::size_t f = 0; f + 1 < path.size(); ++f) frame(path[f]);
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
-  do frame();
+  do frame(camera);
   while (!renderer.settled() && std::chrono::steady_clock::now() < deadline);
   EXPECT_TRUE(renderer.settled()) << "still streaming after " << out.frameMs.size() << " frames";
   out.settledAtFrame = out.frameMs.size();
-  for (int f = 0; f < extraFrames; ++f) frame();
+  for (int f = 0; f < extraFrames; ++f) frame(camera);
   out.image = target->readColour();
   return out;
 }
@@ -139,7 +144,7 @@ scene::CityManifest manifestAt(const fs::path& path) {
 }
 
 Streamed stream(const fs::path& manifest, const Camera& camera, const CityRendererOptions& options) {
-  return stream(manifestAt(manifest), manifest.parent_path().string(), localFiles(), camera, options);
+  return stream(manifestAt(manifest), manifest.parent_path().string(), localFiles(), {camera}, options);
 }
 
 Image cpuRender(const fs::path& manifest, const Camera& camera) {
@@ -217,6 +222,29 @@ TEST_F(StreamedCity, BrokenFilesAreCountedAndTheRestIsDrawn) {
   expectAgree("broken", cpuRender(broken / "rest.json", overview()), gl.image, kMinWithinPct);
 }
 
+// A budget of six 128 x 128 pages (384 KiB) for a city of 60 HNIs (about 430 KiB of pixels, more
+// with the pages' waste): standing in the street, turning from looking on along it to looking
+// back and again on, the atlas never exceeds the budget, pages are emptied for what comes into
+// view, the buildings seen again are fetched again, and the last view is the CPU's.
+TEST_F(StreamedCity, ABudgetEvictsAndReloads) {
+  const fs::path manifest = cityDir() / "city.json";
+  CityRendererOptions budget;
+  budget.atlasPageSize = 128;
+  budget.maxAtlasPages = 6;
+  std::vector<Camera> path;
+  for (int step = 0; step <= 24; ++step) {
+    Camera c = street();
+    const double turn = std::numbers::pi * (step <= 12 ? step : 24 - step) / 12.0;  // 0 -> 180 -> 0 degrees
+    c.target = c.eye + 170.0 * glm::dvec3(std::cos(turn), 0.02, std::sin(turn));
+    path.push_back(c);
+  }
+  const Streamed flown = stream(manifestAt(manifest), cityDir().string(), localFiles(), path, budget);
+  EXPECT_LE(flown.maxAtlasBytes, 6u * 128u * 128u * 4u);
+  EXPECT_GT(flown.stats.evicted, 0u);
+  EXPECT_GT(flown.stats.refetched, 0u) << "evicted buildings seen again are fetched again";
+  expectAgree("budget", cpuRender(manifest, path.back()), flown.image, kMinWithinPct);
+}
+
 // tests/gl/http_server.py on loopback, started for a test and stopped after it.
 class HttpServer {
  public:
@@ -273,8 +301,8 @@ TEST_F(StreamedCity, HttpAndLocalFilesGiveTheSameFrame) {
   const HttpServer server(cityDir().parent_path());
   ASSERT_TRUE(server.running());
   const scene::CityManifest city = manifestAt(cityDir() / "city.json");
-  const Streamed local = stream(city, cityDir().string(), localFiles(), overview(), {});
-  const Streamed http = stream(city, server.url("city"), httpFetch(), overview(), {});
+  const Streamed local = stream(city, cityDir().string(), localFiles(), {overview()}, {});
+  const Streamed http = stream(city, server.url("city"), httpFetch(), {overview()}, {});
   EXPECT_EQ(http.stats.loaded, kBuildings);
   EXPECT_EQ(http.stats.bytesStreamed, local.stats.bytesStreamed);
   EXPECT_EQ(http.image, local.image);
@@ -290,7 +318,7 @@ TEST_F(StreamedCity, HttpErrorsAreCountedAndTheRestIsDrawn) {
   const HttpServer server(root, {"--status", "/city/b4.png=404", "--status", "/city/b5.png=500"});
   ASSERT_TRUE(server.running());
   scene::CityManifest city = manifestAt(root / "city" / "city.json");
-  const Streamed http = stream(city, server.url("city"), httpFetch(), overview(), {});
+  const Streamed http = stream(city, server.url("city"), httpFetch(), {overview()}, {});
   EXPECT_EQ(http.stats.failed, 4u);
   EXPECT_EQ(http.stats.loaded, kBuildings - 4);
   const auto said = [&](const std::string& text) {
@@ -315,7 +343,7 @@ TEST_F(StreamedCity, ASlowServerDoesNotSlowTheFrames) {
   const HttpServer server(cityDir().parent_path(), {"--delay", std::to_string(kDelaySeconds)});
   ASSERT_TRUE(server.running());
   const Streamed http =
-      stream(manifestAt(cityDir() / "city.json"), server.url("city"), httpFetch(), street(), {}, 10);
+      stream(manifestAt(cityDir() / "city.json"), server.url("city"), httpFetch(), {street()}, {}, 10);
   ASSERT_GT(http.settledAtFrame, 10u) << "the downloads should take many frames";
   std::vector<double> streaming(http.frameMs.begin() + 1, http.frameMs.begin() + static_cast<std::ptrdiff_t>(http.settledAtFrame));
   const std::vector<double> loaded(http.frameMs.begin() + static_cast<std::ptrdiff_t>(http.settledAtFrame), http.frameMs.end());

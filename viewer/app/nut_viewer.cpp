@@ -31,8 +31,8 @@ int fail(const std::string& message, int code) {
 
 struct ViewerOptions {
   std::string city, size = "1280x720", cameraPath, screenshot, stats, gl = "osmesa", lookup = "exact";
-  int frames = 1, threads = 2;
-  double settleSeconds = 30;
+  int frames = 1, threads = 2, atlasPage = 4096;
+  double settleSeconds = 30, budgetMb = 1024;
   bool headless = false, noFrustumCulling = false, noFrontToBack = false;
 };
 
@@ -143,6 +143,9 @@ int run(const ViewerOptions& o) {
   options.frustumCulling = !o.noFrustumCulling;
   options.frontToBack = !o.noFrontToBack;
   options.loaderThreads = std::max(1, o.threads);
+  options.atlasPageSize = o.atlasPage;
+  const double pageMb = 4.0 * o.atlasPage * o.atlasPage / (1 << 20);
+  options.maxAtlasPages = std::max(1, static_cast<int>(o.budgetMb / pageMb));
   nut::viewer::CityRenderer renderer(gl, *hni, *city, base, fetch, options);
   nut::RayCastOptions cast;
   cast.lookup = o.lookup == "exact" ? nut::Lookup::Exact : nut::Lookup::Heuristic;
@@ -170,6 +173,9 @@ int run(const ViewerOptions& o) {
                       {"culled_frustum", stats.culledByFrustum},
                       {"waiting", stats.waiting},
                       {"uploaded", stats.uploaded},
+                      {"evicted", stats.evicted},
+                      {"refetched", stats.refetched},
+                      {"over_budget", stats.overBudget},
                       {"loaded", stats.loaded},
                       {"bytes_streamed", stats.bytesStreamed}});
     return nut::Ok{};
@@ -226,6 +232,13 @@ int main(int argc, char** argv) {
   app.add_option("--threads", o.threads, "Loader threads")->capture_default_str()->check(CLI::Range(1, 64));
   app.add_option("--settle-seconds", o.settleSeconds, "Longest wait for the last view to stream in")
       ->capture_default_str();
+  app.add_option("--budget", o.budgetMb,
+                 "Atlas memory in MiB: whole pages, at least one; the least recently seen are emptied when full")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
+  app.add_option("--atlas-page", o.atlasPage, "Atlas page side in texels")
+      ->capture_default_str()
+      ->check(CLI::Range(64, 16384));
   app.add_flag("--no-frustum-culling", o.noFrustumCulling, "Draw buildings outside the view too");
   app.add_flag("--no-front-to-back", o.noFrontToBack, "Draw in manifest order instead of nearest first");
   app.footer(

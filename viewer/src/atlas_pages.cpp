@@ -33,6 +33,16 @@ Result<AtlasSlot> AtlasPages::place(const Image& hni) {
   return AtlasSlot{pageCount() - 1, {rect->x, rect->y}};
 }
 
+bool AtlasPages::fits(const Image& hni) const {
+  if (hni.width > pageSize_ || hni.height > pageSize_) return false;
+  if (pageCount() < maxPages_) return true;
+  const packer::Item item{0, hni.width, hni.height};
+  return std::any_of(pages_.begin(), pages_.end(),
+                     [&](const Page& p) { return p.bin.score(item, packer::Heuristic::BottomLeft).has_value(); });
+}
+
+void AtlasPages::clear(int page) { pages_[static_cast<std::size_t>(page)].bin = packer::MaxRectsBin(pageSize_, pageSize_); }
+
 std::size_t AtlasPages::bytes() const {
   return pages_.size() * static_cast<std::size_t>(pageSize_) * static_cast<std::size_t>(pageSize_) * 4;
 }

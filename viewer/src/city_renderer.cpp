@@ -61,11 +61,40 @@ void CityRenderer::receive(CityFrameStats& stats) {
     ++failed_;
     stats.newFailures.push_back(city_.buildings[loaded.building].name + ": " + loaded.image.error().message);
   }
+}
+
+// Empties the page whose buildings were seen least recently, unless one of them was seen this
+// frame. Returns whether a page was emptied.
+bool CityRenderer::evictLeastRecentlySeenPage() {
+  std::vector<std::size_t> lastSeen(static_cast<std::size_t>(pages_.pageCount()), 0);
+  for (const Building& b : buildings_)
+    if (b.state == State::Loaded)
+      lastSeen[static_cast<std::size_t>(b.slot.page)] = std::max(lastSeen[static_cast<std::size_t>(b.slot.page)], b.lastSeen);
+  const auto oldest = std::min_element(lastSeen.begin(), lastSeen.end());
+  if (oldest == lastSeen.end() || *oldest >= frame_) return false;
+  const int page = static_cast<int>(oldest - lastSeen.begin());
+  for (Building& b : buildings_)
+    if (b.state == State::Loaded && b.slot.page == page) {
+      b.state = State::Unrequested;
+      b.evicted = true;
+      --loaded_;
+      ++evicted_;
+    }
+  pages_.clear(page);
+  return true;
+}
+
+// A slice of the upload queue into the atlas: up to the per-frame bytes, at least one HNI.
+void CityRenderer::upload(CityFrameStats& stats) {
   std::size_t bytes = 0;
   std::size_t taken = 0;
   for (; taken < uploadQueue_.size() && (taken == 0 || bytes < options_.uploadBytesPerFrame); ++taken) {
     LoadedHni& loaded = uploadQueue_[taken];
     Building& b = buildings_[loaded.building];
+    if (!pages_.fits(*loaded.image) && !evictLeastRecentlySeenPage()) {
+      stats.overBudget = true;  // stays queued until the view moves on
+      break;
+    }
     bytes += loaded.image->pixels.size();
     auto slot = pages_.place(*loaded.image);
     if (!slot) {
@@ -85,6 +114,7 @@ void CityRenderer::receive(CityFrameStats& stats) {
 
 Status CityRenderer::drawFrame(const Camera& camera, const RayCastOptions& options, CityFrameStats& stats) {
   stats = {};
+  ++frame_;
   receive(stats);
   const FrameView view(camera);
   // Distance of a building from the eye: to its box's centre, else to its origin.
@@ -102,8 +132,10 @@ Status CityRenderer::drawFrame(const Camera& camera, const RayCastOptions& optio
     }
     const glm::dvec3 centre = b.bounds ? b.bounds->centre() : b.originM;
     visible.push_back({i, glm::length(centre - camera.eye)});
+    buildings_[i].lastSeen = frame_;
   }
   std::stable_sort(visible.begin(), visible.end(), [](const Visible& a, const Visible& b) { return a.distance < b.distance; });
+  upload(stats);
 
   // The nearest visible buildings not yet asked for go to the loaders, as many as they may hold.
   std::size_t outstanding = loader_.outstanding();
@@ -114,6 +146,7 @@ Status CityRenderer::drawFrame(const Camera& camera, const RayCastOptions& optio
     if (b.state != State::Unrequested || outstanding >= options_.maxOutstanding) continue;
     loader_.request(v.building, base_ + "/" + city_.buildings[v.building].hni);
     b.state = State::Requested;
+    refetched_ += b.evicted ? 1 : 0;
     ++outstanding;
   }
 
@@ -145,6 +178,8 @@ Status CityRenderer::drawFrame(const Camera& camera, const RayCastOptions& optio
   stats.failed = failed_;
   stats.bytesStreamed = bytesStreamed_;
   stats.atlasBytes = pages_.bytes();
+  stats.evicted = evicted_;
+  stats.refetched = refetched_;
   settled_ = stats.waiting == 0 && uploadQueue_.empty() && loader_.outstanding() == 0;
   if (const GLenum error = gl_->GetError(); error != GL_NO_ERROR) return Error{"GL frame: " + glErrorName(error)};
   return Ok{};

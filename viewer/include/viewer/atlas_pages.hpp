@@ -27,11 +27,16 @@ class AtlasPages {
   // Pages of pageSize^2 texels (clamped to GL_MAX_TEXTURE_SIZE), at most maxPages of them.
   AtlasPages(const Gl& gl, int pageSize, int maxPages);
 
+  // Whether place() would find room: in an open page, or by opening one.
+  bool fits(const Image& hni) const;
   // Uploads a valid HNI into a page. Errors: larger than a page; every page full and the limit
   // reached; a GL error.
   Result<AtlasSlot> place(const Image& hni);
+  // Empties a page for reuse: what it held must no longer be drawn.
+  void clear(int page);
 
   int pageCount() const { return static_cast<int>(pages_.size()); }
+  int pageSize() const { return pageSize_; }
   const HniAtlas& page(int i) const { return pages_[static_cast<std::size_t>(i)].atlas; }
   // Texture memory of the open pages (4 bytes a texel).
   std::size_t bytes() const;

@@ -31,6 +31,9 @@ struct CityRendererOptions {
   int loaderThreads = 2;
   std::size_t maxOutstanding = 16;                 // requests in the loaders' hands at once
   std::size_t uploadBytesPerFrame = 4u << 20;      // at least one HNI a frame is uploaded
+  // The memory budget: pages of atlasPageSize^2 texels (4 bytes each), at most maxAtlasPages.
+  // When they are full, the page whose buildings were seen least recently is emptied (its
+  // buildings go back to unloaded, fetched again when seen), never one seen this frame.
   int atlasPageSize = 4096;
   int maxAtlasPages = 16;
 };
@@ -43,6 +46,9 @@ struct CityFrameStats {
   std::size_t culledByFrustum = 0; // outside the view (known boxes only)
   std::size_t waiting = 0;         // visible, not loaded yet
   std::size_t uploaded = 0;        // HNIs uploaded this frame
+  std::size_t evicted = 0;         // buildings whose page was emptied, so far
+  std::size_t refetched = 0;       // requests, so far, for buildings evicted before
+  bool overBudget = false;         // this frame could not upload: every page holds what it sees
   std::size_t bytesStreamed = 0;   // fetched so far
   std::size_t atlasBytes = 0;
   std::vector<std::string> newFailures;  // this frame's, one message each
@@ -65,12 +71,16 @@ class CityRenderer {
   enum class State { Unrequested, Requested, Loaded, Failed };
   struct Building {
     State state = State::Unrequested;
+    std::size_t lastSeen = 0;  // the last frame (from 1) that found it visible
+    bool evicted = false;      // loaded once and evicted since
     glm::dvec3 originM{0.0};
     glm::dmat3 worldFromRoot{1.0};
     std::optional<WorldBox> bounds;  // the manifest's until loaded, then the image's
     AtlasSlot slot;
   };
   void receive(CityFrameStats& stats);
+  void upload(CityFrameStats& stats);
+  bool evictLeastRecentlySeenPage();
 
   const Gl* gl_;
   const HniRenderer* hniRenderer_;
@@ -81,7 +91,7 @@ class CityRenderer {
   std::vector<LoadedHni> uploadQueue_;  // decoded, waiting for their frame's slice
   AtlasPages pages_;
   CityLoader loader_;
-  std::size_t bytesStreamed_ = 0, loaded_ = 0, failed_ = 0;
+  std::size_t bytesStreamed_ = 0, loaded_ = 0, failed_ = 0, evicted_ = 0, refetched_ = 0, frame_ = 0;
   bool settled_ = false;
 };
 
