@@ -12,8 +12,8 @@ packages=(
   libembree-dev libtbb-dev
   # GL back-ends: OSMesa (headless, CPU), EGL (headless GPU), GLFW windows under Xvfb
   libosmesa6-dev libegl-dev libepoxy-dev libglfw3-dev xvfb xauth
-  # the streaming viewer: HTTP(S) downloads
-  libcurl4-openssl-dev
+  # the streaming viewer: HTTP(S) downloads, the window's overlay
+  libcurl4-openssl-dev libimgui-dev
   # the mesh converter: mesh input and checks, glTF size comparison
   libopenmesh-dev libcgal-dev libgmp-dev libmpfr-dev libmeshoptimizer-dev
   # tests, fuzzing and benchmarks

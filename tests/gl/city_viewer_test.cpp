@@ -9,6 +9,8 @@
 #include <algorithm>
 #include <chrono>
 #include <csignal>
+#include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <numbers>
 #include <fstream>
@@ -355,6 +357,48 @@ TEST_F(StreamedCity, ASlowServerDoesNotSlowTheFrames) {
   RecordProperty("streaming_median_ms", std::to_string(median(streaming)));
   RecordProperty("streaming_90th_ms", std::to_string(ninetieth));
   RecordProperty("loaded_median_ms", std::to_string(median(loaded)));
+}
+
+// Runs nut-viewer with `args`; its exit status.
+int runViewer(const std::string& args) {
+  return std::system((std::string(NUT_VIEWER_PATH) + " " + args + " 2>/dev/null").c_str());
+}
+
+// nut-viewer's window (GLFW, under xvfb-run in ctest: city_viewer_window_xvfb) shows the city as
+// the headless viewer draws it, with the overlay over its corner: outside the overlay's rectangle
+// (which the stats report) every pixel equals the headless screenshot's, and inside it most differ.
+TEST_F(StreamedCity, TheWindowShowsTheCityAndTheOverlay) {
+  if (std::getenv("DISPLAY") == nullptr)
+    GTEST_SKIP() << "no display: ctest runs this case again under xvfb-run (city_viewer_window_xvfb)";
+  const fs::path dir = gltest::outputDir("city");
+  const std::string path = (dir / "overview.json").string();
+  std::ofstream(path) << R"({"fov_deg": 40, "keyframes": [{"eye": [-60, 90, -70], "target": [110, 0, 70]}]})";
+  const std::string common = (cityDir() / "city.json").string() + " --size 640x360 --camera-path " + path;
+  ASSERT_EQ(runViewer(common + " --frames 2 --screenshot " + (dir / "window.png").string() + " --stats " +
+                      (dir / "window.json").string()),
+            0);
+  ASSERT_EQ(runViewer(common + " --headless --screenshot " + (dir / "headless.png").string()), 0);
+  auto window = readPng((dir / "window.png").string(), PngKind::Render);
+  auto headless = readPng((dir / "headless.png").string(), PngKind::Render);
+  ASSERT_TRUE(window && headless);
+  const auto stats = readTextFile((dir / "window.json").string());
+  ASSERT_TRUE(stats);
+  const auto overlayAt = stats->find("\"overlay\"");
+  ASSERT_NE(overlayAt, std::string::npos);
+  double x = 0, y = 0, w = 0, h = 0;
+  ASSERT_EQ(std::sscanf(stats->c_str() + stats->find('[', overlayAt), "[ %lf , %lf , %lf , %lf", &x, &y, &w, &h), 4);
+  ASSERT_GT(w, 50);
+  ASSERT_GT(h, 50);
+  long long outsideDiffer = 0, inside = 0, insideDiffer = 0;
+  for (int py = 0; py < 360; ++py)
+    for (int px = 0; px < 640; ++px) {
+      const bool differ = !std::equal(window->image.at(px, py), window->image.at(px, py) + 3, headless->image.at(px, py));
+      const bool inOverlay = px >= x && px < x + w && py >= y && py < y + h;
+      inside += inOverlay;
+      (inOverlay ? insideDiffer : outsideDiffer) += differ;
+    }
+  EXPECT_EQ(outsideDiffer, 0);
+  EXPECT_GT(insideDiffer, inside / 2);
 }
 
 }  // namespace

@@ -20,6 +20,8 @@
 #include <viewer/render_target.hpp>
 #include <viewer/shader_library.hpp>
 
+#include "viewer_window.hpp"
+
 namespace {
 
 constexpr int kOk = 0, kInvalid = 1, kUsage = 2;
@@ -31,7 +33,7 @@ int fail(const std::string& message, int code) {
 
 struct ViewerOptions {
   std::string city, size = "1280x720", cameraPath, screenshot, stats, gl = "osmesa", lookup = "exact";
-  int frames = 1, threads = 2, atlasPage = 4096;
+  int frames = 0, threads = 2, atlasPage = 4096;  // frames 0: one headless, until closed in a window
   double settleSeconds = 30, budgetMb = 1024;
   bool headless = false, noFrustumCulling = false, noFrontToBack = false;
 };
@@ -86,7 +88,6 @@ nut::WorldBox manifestBounds(const nut::scene::CityManifest& city) {
 }
 
 int run(const ViewerOptions& o) {
-  if (!o.headless) return fail("the window is not built yet: run with --headless (docs/VIEWER.md)", kUsage);
   int width = 0, height = 0;
   char tail = 0;
   if (std::sscanf(o.size.c_str(), "%dx%d%c", &width, &height, &tail) != 2 || width < 1 || height < 1 ||
@@ -128,6 +129,18 @@ int run(const ViewerOptions& o) {
     return c;
   };
 
+  nut::viewer::CityRendererOptions options;
+  options.frustumCulling = !o.noFrustumCulling;
+  options.frontToBack = !o.noFrontToBack;
+  options.loaderThreads = std::max(1, o.threads);
+  options.atlasPageSize = o.atlasPage;
+  const double pageMb = 4.0 * o.atlasPage * o.atlasPage / (1 << 20);
+  options.maxAtlasPages = std::max(1, static_cast<int>(o.budgetMb / pageMb));
+  nut::RayCastOptions cast;
+  cast.lookup = o.lookup == "exact" ? nut::Lookup::Exact : nut::Lookup::Heuristic;
+  if (!o.headless)
+    return nut::viewer::runWindow({*city, base, fetch, options, cast, cameraAt(0.0), o.frames, o.screenshot, o.stats});
+
   auto backend = nut::viewer::parseBackend(o.gl);
   if (!backend) return fail(backend.error().message, kUsage);
   auto context = nut::viewer::createContext(*backend);
@@ -139,16 +152,7 @@ int run(const ViewerOptions& o) {
   auto target = nut::viewer::RenderTarget::create(gl, width, height);
   if (!target) return fail(target.error().message, kInvalid);
 
-  nut::viewer::CityRendererOptions options;
-  options.frustumCulling = !o.noFrustumCulling;
-  options.frontToBack = !o.noFrontToBack;
-  options.loaderThreads = std::max(1, o.threads);
-  options.atlasPageSize = o.atlasPage;
-  const double pageMb = 4.0 * o.atlasPage * o.atlasPage / (1 << 20);
-  options.maxAtlasPages = std::max(1, static_cast<int>(o.budgetMb / pageMb));
   nut::viewer::CityRenderer renderer(gl, *hni, *city, base, fetch, options);
-  nut::RayCastOptions cast;
-  cast.lookup = o.lookup == "exact" ? nut::Lookup::Exact : nut::Lookup::Heuristic;
 
   nlohmann::json frames = nlohmann::json::array();
   std::vector<std::string> failures;
@@ -180,8 +184,9 @@ int run(const ViewerOptions& o) {
                       {"bytes_streamed", stats.bytesStreamed}});
     return nut::Ok{};
   };
-  for (int f = 0; f < o.frames; ++f)
-    if (nut::Status s = drawOne(cameraAt(o.frames > 1 ? f / double(o.frames - 1) : 1.0), false); !s)
+  const int pathFrames = std::max(1, o.frames);
+  for (int f = 0; f < pathFrames; ++f)
+    if (nut::Status s = drawOne(cameraAt(pathFrames > 1 ? f / double(pathFrames - 1) : 1.0), false); !s)
       return fail(s.error().message, kInvalid);
   // The last view until everything it needs has streamed in, so the screenshot is complete.
   const auto settleStart = std::chrono::steady_clock::now();
@@ -217,11 +222,14 @@ int main(int argc, char** argv) {
   ViewerOptions o;
   app.add_option("city", o.city, "City manifest: a path, or an http(s):// URL (its buildings are fetched beside it)")
       ->required();
-  app.add_flag("--headless", o.headless, "Render offscreen (OSMesa or EGL) instead of a window");
+  app.add_flag("--headless", o.headless, "Render offscreen (OSMesa or EGL) instead of in a window");
   app.add_option("--size", o.size, "Frame size WxH")->capture_default_str();
   app.add_option("--camera-path", o.cameraPath, "Camera path JSON (docs/VIEWER.md); default: the city fitted");
-  app.add_option("--frames", o.frames, "Frames along the camera path")->capture_default_str()->check(CLI::Range(1, 1000000));
-  app.add_option("--screenshot", o.screenshot, "Write the last frame (PNG), once the city has streamed in");
+  app.add_option("--frames", o.frames,
+                 "Frames along the camera path (headless; default 1), or before the window closes itself")
+      ->check(CLI::Range(1, 1000000));
+  app.add_option("--screenshot", o.screenshot,
+                 "Write the last frame (PNG), once its view has streamed in; in a window, with the overlay");
   app.add_option("--stats", o.stats, "Write per-frame statistics (JSON)");
   app.add_option("--gl", o.gl, "Headless GL: osmesa (CPU, llvmpipe) or egl (a GPU)")
       ->check(CLI::IsMember({"osmesa", "egl"}))
@@ -242,8 +250,8 @@ int main(int argc, char** argv) {
   app.add_flag("--no-frustum-culling", o.noFrustumCulling, "Draw buildings outside the view too");
   app.add_flag("--no-front-to-back", o.noFrontToBack, "Draw in manifest order instead of nearest first");
   app.footer(
-      "Example:\n  nut city --count 100 --out city100 && nut-viewer city100/city.json --headless --size 1280x720 "
-      "--screenshot shot.png --stats stats.json\n\n"
+      "Examples:\n  nut city --count 100 --out city100 && nut-viewer city100/city.json\n"
+      "  nut-viewer city100/city.json --headless --size 1280x720 --screenshot shot.png --stats stats.json\n\n"
       "Exit status: 0 success, 1 invalid input, 2 usage error or a file that cannot be read or written.");
   try {
     app.parse(argc, argv);

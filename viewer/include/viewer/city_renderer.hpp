@@ -67,6 +67,10 @@ class CityRenderer {
   // No building left to load that the last frame could see, and nothing in the loaders' hands.
   bool settled() const { return settled_; }
 
+  // The culling and order switches may change between frames (the viewer's overlay).
+  void setFrustumCulling(bool on) { options_.frustumCulling = on; }
+  void setFrontToBack(bool on) { options_.frontToBack = on; }
+
  private:
   enum class State { Unrequested, Requested, Loaded, Failed };
   struct Building {
