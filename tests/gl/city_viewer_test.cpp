@@ -90,6 +90,8 @@ struct Streamed {
   std::size_t settledAtFrame = 0;
   std::size_t maxAtlasBytes = 0;
   std::vector<std::string> failures;
+  Image first;                 // the first frame, before anything is loaded
+  CityFrameStats firstStats;
 };
 
 // Draws a frame from each camera of the path, then frames of the last one until the city has
@@ -109,9 +111,14 @@ Streamed stream(const scene::CityManifest& city, const std::string& base, const 
     ADD_FAILURE() << hni.error().message;
     return out;
   }
+  auto meshes = MeshRenderer::create(**context, library);
+  if (!meshes) {
+    ADD_FAILURE() << meshes.error().message;
+    return out;
+  }
   const Gl& gl = (*context)->gl();
   auto target = RenderTarget::create(gl, camera.width, camera.height);
-  CityRenderer renderer(gl, *hni, city, base, fetch, options);
+  CityRenderer renderer(gl, *hni, &*meshes, city, base, fetch, options);
   RayCastOptions cast;
   cast.lookup = Lookup::Exact;
   const auto frame = [&](const Camera& view) {
@@ -127,6 +134,10 @@ Streamed stream(const scene::CityManifest& city, const std::string& base, const 
     out.maxAtlasBytes = std::max(out.maxAtlasBytes, out.stats.atlasBytes);
     out.frameMs.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
     out.failures.insert(out.failures.end(), out.stats.newFailures.begin(), out.stats.newFailures.end());
+    if (out.frameMs.size() == 1) {
+      out.first = target->readColour();
+      out.firstStats = out.stats;
+    }
   };
   for (std::size_t f = 0; f + 1 < path.size(); ++f) frame(path[f]);
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
@@ -194,6 +205,35 @@ TEST_F(StreamedCity, CullingAndOrderChangeNoPixel) {
   EXPECT_EQ(all.stats.drawn, kBuildings);
   EXPECT_EQ(culled.image, all.image);
   expectAgree("street", cpuRender(manifest, street()), culled.image, kMinWithinPct);
+}
+
+bool isBackground(const std::uint8_t* p) { return p[0] == kBackground[0] && p[1] == kBackground[1] && p[2] == kBackground[2]; }
+
+// Where the settled city shows a building, `image` shows something: its box contains it.
+long long uncovered(const Image& settled, const Image& image) {
+  long long n = 0;
+  for (int y = 0; y < settled.height; ++y)
+    for (int x = 0; x < settled.width; ++x) n += !isBackground(settled.at(x, y)) && isBackground(image.at(x, y));
+  return n;
+}
+
+TEST_F(StreamedCity, UntilItIsLoadedABuildingIsItsGreyBox) {
+  const Streamed gl = stream(cityDir() / "city.json", overview(), {});
+  EXPECT_EQ(gl.firstStats.loaded, 0u) << "the first frame comes before any file";
+  EXPECT_EQ(gl.firstStats.proxies, kBuildings);
+  EXPECT_EQ(uncovered(gl.image, gl.first), 0) << "every building's pixels are covered by its proxy";
+  EXPECT_EQ(gl.stats.proxies, 0u) << "none once settled";
+}
+
+TEST_F(StreamedCity, FarBuildingsAsTheirSummaryBoxes) {
+  CityRendererOptions summaries;
+  summaries.summaryBelowPx = 1e6;  // every building counts as far
+  const Streamed gl = stream(cityDir() / "city.json", overview(), summaries);
+  EXPECT_EQ(gl.stats.asSummary, kBuildings);
+  EXPECT_EQ(gl.stats.drawn, 0u) << "no building is ray-cast";
+  const Streamed full = stream(cityDir() / "city.json", overview(), {});
+  EXPECT_EQ(uncovered(full.image, gl.image), 0) << "each building's pixels lie inside its summary box";
+  EXPECT_NE(full.image, gl.image);
 }
 
 TEST_F(StreamedCity, SmallAtlasPagesChangeNoPixel) {

@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cstdio>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -17,6 +18,7 @@
 #include <viewer/city_renderer.hpp>
 #include <viewer/context.hpp>
 #include <viewer/http_fetch.hpp>
+#include <viewer/mesh_renderer.hpp>
 #include <viewer/render_target.hpp>
 #include <viewer/shader_library.hpp>
 
@@ -34,8 +36,10 @@ int fail(const std::string& message, int code) {
 struct ViewerOptions {
   std::string city, size = "1280x720", cameraPath, screenshot, stats, gl = "osmesa", lookup = "exact";
   int frames = 0, threads = 2, atlasPage = 4096;  // frames 0: one headless, until closed in a window
-  double settleSeconds = 30, budgetMb = 1024;
-  bool headless = false, noFrustumCulling = false, noFrontToBack = false;
+  double settleSeconds = 30, budgetMb = 1024, lodPx = 0, summaryPx = 0;
+  std::string lod = "off";
+  bool headless = false, noFrustumCulling = false, noFrontToBack = false, noProxies = false;
+  std::optional<bool> ground;  // default: in the window, not headless
 };
 
 struct Keyframe {
@@ -136,8 +140,13 @@ int run(const ViewerOptions& o) {
   options.atlasPageSize = o.atlasPage;
   const double pageMb = 4.0 * o.atlasPage * o.atlasPage / (1 << 20);
   options.maxAtlasPages = std::max(1, static_cast<int>(o.budgetMb / pageMb));
+  options.proxies = !o.noProxies;
+  options.summaryBelowPx = o.summaryPx;
+  options.ground = o.ground.value_or(!o.headless);
   nut::RayCastOptions cast;
   cast.lookup = o.lookup == "exact" ? nut::Lookup::Exact : nut::Lookup::Heuristic;
+  cast.lodPx = o.lodPx;
+  cast.lodAuto = o.lod == "auto";
   if (!o.headless)
     return nut::viewer::runWindow({*city, base, fetch, options, cast, cameraAt(0.0), o.frames, o.screenshot, o.stats});
 
@@ -152,7 +161,9 @@ int run(const ViewerOptions& o) {
   auto target = nut::viewer::RenderTarget::create(gl, width, height);
   if (!target) return fail(target.error().message, kInvalid);
 
-  nut::viewer::CityRenderer renderer(gl, *hni, *city, base, fetch, options);
+  auto meshes = nut::viewer::MeshRenderer::create(**context, library);
+  if (!meshes) return fail(meshes.error().message, kInvalid);
+  nut::viewer::CityRenderer renderer(gl, *hni, &*meshes, *city, base, fetch, options);
 
   nlohmann::json frames = nlohmann::json::array();
   std::vector<std::string> failures;
@@ -176,6 +187,8 @@ int run(const ViewerOptions& o) {
                       {"drawn", stats.drawn},
                       {"culled_frustum", stats.culledByFrustum},
                       {"waiting", stats.waiting},
+                      {"proxies", stats.proxies},
+                      {"as_summary", stats.asSummary},
                       {"uploaded", stats.uploaded},
                       {"evicted", stats.evicted},
                       {"refetched", stats.refetched},
@@ -247,6 +260,16 @@ int main(int argc, char** argv) {
   app.add_option("--atlas-page", o.atlasPage, "Atlas page side in texels")
       ->capture_default_str()
       ->check(CLI::Range(64, 16384));
+  app.add_option("--lod", o.lod, "auto: summaries where the HNIs' measured footprints allow (nut grammar --lod)")
+      ->check(CLI::IsMember({"off", "auto"}))
+      ->capture_default_str();
+  app.add_option("--lod-px", o.lodPx, "Summaries for redirection cells below this many pixels (0: full detail)")
+      ->check(CLI::NonNegativeNumber);
+  app.add_option("--summary-px", o.summaryPx,
+                 "Draw a building whose largest side spans fewer pixels as its summary box (0: never)")
+      ->check(CLI::NonNegativeNumber);
+  app.add_flag("--ground,!--no-ground", o.ground, "A ground plane under the city (default: in the window only)");
+  app.add_flag("--no-proxies", o.noProxies, "Draw nothing for buildings not loaded yet (default: a grey box)");
   app.add_flag("--no-frustum-culling", o.noFrustumCulling, "Draw buildings outside the view too");
   app.add_flag("--no-front-to-back", o.noFrontToBack, "Draw in manifest order instead of nearest first");
   app.footer(

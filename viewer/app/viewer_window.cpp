@@ -16,6 +16,7 @@
 
 #include <nut/png_io.hpp>
 #include <viewer/context.hpp>
+#include <viewer/mesh_renderer.hpp>
 #include <viewer/post_process.hpp>
 #include <viewer/render_target.hpp>
 #include <viewer/shader_library.hpp>
@@ -88,7 +89,9 @@ int runWindow(const WindowRun& run) {
   if (!hni) return fail(hni.error().message);
   auto fxaa = Fxaa::create(**context, library);
   if (!fxaa) return fail(fxaa.error().message);
-  CityRenderer renderer(gl, *hni, run.city, run.base, run.fetch, run.options);
+  auto meshes = MeshRenderer::create(**context, library);
+  if (!meshes) return fail(meshes.error().message);
+  CityRenderer renderer(gl, *hni, &*meshes, run.city, run.base, run.fetch, run.options);
 
   IMGUI_CHECKVERSION();
   ImGui::CreateContext();
@@ -101,7 +104,7 @@ int runWindow(const WindowRun& run) {
   FlyCamera fly(run.start);
   RayCastOptions cast = run.cast;
   bool frustumCulling = run.options.frustumCulling, frontToBack = run.options.frontToBack, antiAlias = false;
-  float lodPx = static_cast<float>(cast.lodPx);
+  float lodPx = static_cast<float>(cast.lodPx), summaryPx = static_cast<float>(run.options.summaryBelowPx);
   std::optional<RenderTarget> frame, smoothed;
   CityFrameStats stats;
   nlohmann::json frames = nlohmann::json::array();
@@ -143,6 +146,7 @@ int runWindow(const WindowRun& run) {
     renderer.setFrustumCulling(frustumCulling);
     renderer.setFrontToBack(frontToBack);
     cast.lodPx = lodPx;
+    renderer.setSummaryBelowPx(summaryPx);
     if (Status s = renderer.drawFrame(camera, cast, stats); !s) return fail(s.error().message);
     for (const std::string& failure : stats.newFailures) std::fprintf(stderr, "warning: %s\n", failure.c_str());
     if (antiAlias) fxaa->apply(*frame, *smoothed);
@@ -165,7 +169,9 @@ int runWindow(const WindowRun& run) {
     ImGui::Text("streamed %.2f MB, atlas %.0f MB, %zu evicted", stats.bytesStreamed / 1e6, stats.atlasBytes / 1048576.0,
                 stats.evicted);
     ImGui::ProgressBar(stats.known ? static_cast<float>(stats.loaded) / static_cast<float>(stats.known) : 1.0f);
-    ImGui::SliderFloat("LOD px", &lodPx, 0.0f, 16.0f, "%.1f");
+    ImGui::Text("as summaries %zu, proxies %zu", stats.asSummary, stats.proxies);
+    ImGui::SliderFloat("LOD px (cells)", &lodPx, 0.0f, 16.0f, "%.1f");
+    ImGui::SliderFloat("summary px (buildings)", &summaryPx, 0.0f, 64.0f, "%.0f");
     ImGui::Checkbox("frustum culling", &frustumCulling);
     ImGui::SameLine();
     ImGui::Checkbox("front to back", &frontToBack);

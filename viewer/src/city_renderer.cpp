@@ -4,8 +4,10 @@
 #include <algorithm>
 #include <array>
 
+#include <glm/common.hpp>
 #include <glm/geometric.hpp>
 
+#include <nut/hni_view.hpp>
 #include <scene/scene.hpp>
 
 namespace nut::viewer {
@@ -31,10 +33,11 @@ bool mayBeVisible(const WorldBox& box, const FrameView& view) {
            allOutside([&](const glm::dvec3& p) { return camera.farM - glm::dot(p, forward); }));
 }
 
-CityRenderer::CityRenderer(const Gl& gl, const HniRenderer& hniRenderer, scene::CityManifest city, std::string base,
-                           Fetch fetch, const CityRendererOptions& options)
+CityRenderer::CityRenderer(const Gl& gl, const HniRenderer& hniRenderer, const MeshRenderer* meshRenderer,
+                           scene::CityManifest city, std::string base, Fetch fetch, const CityRendererOptions& options)
     : gl_(&gl),
       hniRenderer_(&hniRenderer),
+      meshRenderer_(meshRenderer),
       city_(std::move(city)),
       base_(std::move(base)),
       options_(options),
@@ -105,11 +108,53 @@ void CityRenderer::upload(CityFrameStats& stats) {
     }
     b.slot = *slot;
     b.bounds = HniRayCaster(*loaded.image, b.originM, b.worldFromRoot).bounds();
+    const HniView hni(*loaded.image);
+    const BlockHeader root = hni.header(hni.fileRecord().root);
+    b.rootSizeM = glm::dvec3(root.sizeUnits) * format::kMetresPerUnit;
+    b.summary = root.summary;
     b.state = State::Loaded;
     ++loaded_;
     ++stats.uploaded;
   }
   uploadQueue_.erase(uploadQueue_.begin(), uploadQueue_.begin() + static_cast<std::ptrdiff_t>(taken));
+}
+
+namespace {
+
+constexpr Material kProxyGrey{175, 175, 175, 255, 0};
+constexpr Material kGround{196, 198, 190, 255, 0};
+
+// A box of eight corners (x fastest, then y, then z: corner c at bits x = c & 1, y = c & 2,
+// z = c & 4), each face its material: +x, -x, +y, -y, +z, -z.
+void addBox(TriangleMesh& mesh, const std::array<glm::dvec3, 8>& corner, const std::array<Material, 6>& faces) {
+  // Each face's four corners, counter-clockwise seen from outside.
+  static constexpr int kFace[6][4] = {{1, 3, 7, 5}, {0, 4, 6, 2}, {2, 6, 7, 3}, {0, 1, 5, 4}, {4, 5, 7, 6}, {0, 2, 3, 1}};
+  for (int f = 0; f < 6; ++f) {
+    const auto base = static_cast<std::uint32_t>(mesh.positions.size());
+    for (int k = 0; k < 4; ++k) mesh.positions.push_back(corner[static_cast<std::size_t>(kFace[f][k])]);
+    const auto material = static_cast<std::uint16_t>(mesh.materials.size());
+    mesh.materials.push_back(faces[static_cast<std::size_t>(f)]);
+    mesh.triangles.push_back({base, base + 1, base + 2});
+    mesh.triangles.push_back({base, base + 2, base + 3});
+    mesh.triangleMaterial.insert(mesh.triangleMaterial.end(), 2, material);
+  }
+}
+
+std::array<glm::dvec3, 8> cornersOf(const WorldBox& box) {
+  std::array<glm::dvec3, 8> c;
+  for (int i = 0; i < 8; ++i)
+    c[static_cast<std::size_t>(i)] = {i & 1 ? box.max.x : box.min.x, i & 2 ? box.max.y : box.min.y, i & 4 ? box.max.z : box.min.z};
+  return c;
+}
+
+}  // namespace
+
+Status CityRenderer::drawBoxes(const FrameView& view, const TriangleMesh& boxes) const {
+  if (boxes.triangles.empty()) return Ok{};
+  auto gpu = GpuMesh::upload(*gl_, boxes);
+  if (!gpu) return gpu.error();
+  meshRenderer_->drawOpaque(view, *gpu);
+  return Ok{};
 }
 
 Status CityRenderer::drawFrame(const Camera& camera, const RayCastOptions& options, CityFrameStats& stats) {
@@ -150,11 +195,56 @@ Status CityRenderer::drawFrame(const Camera& camera, const RayCastOptions& optio
     ++outstanding;
   }
 
+  // Boxes first, so that the ray casting behind them is rejected early: the ground, the proxies
+  // of what is still streaming in, and the far buildings as their summaries.
+  TriangleMesh boxes;
+  std::vector<bool> summarised(buildings_.size(), false);
+  if (meshRenderer_) {
+    if (options_.ground && !buildings_.empty()) {
+      WorldBox all{glm::dvec3(1e300), glm::dvec3(-1e300)};
+      for (const Building& b : buildings_) {
+        const WorldBox box = b.bounds ? *b.bounds : WorldBox{b.originM, b.originM};
+        all.min = glm::min(all.min, box.min);
+        all.max = glm::max(all.max, box.max);
+      }
+      const double margin = 0.5 * glm::length(all.size()) + 100.0;
+      const WorldBox ground{{all.min.x - margin, all.min.y - 0.1, all.min.z - margin},
+                            {all.max.x + margin, all.min.y, all.max.z + margin}};
+      addBox(boxes, cornersOf(ground), {kGround, kGround, kGround, kGround, kGround, kGround});
+    }
+    for (const Visible& v : visible) {
+      const Building& b = buildings_[v.building];
+      if (b.state != State::Loaded && options_.proxies && b.bounds) {
+        addBox(boxes, cornersOf(*b.bounds), {kProxyGrey, kProxyGrey, kProxyGrey, kProxyGrey, kProxyGrey, kProxyGrey});
+        ++stats.proxies;
+      }
+      const double largest = std::max({b.rootSizeM.x, b.rootSizeM.y, b.rootSizeM.z});
+      if (b.state == State::Loaded && options_.summaryBelowPx > 0 &&
+          largest < options_.summaryBelowPx * std::max(v.distance, 1e-3) * view.pixelAngle) {
+        std::array<glm::dvec3, 8> corner;
+        for (int c = 0; c < 8; ++c)
+          corner[static_cast<std::size_t>(c)] =
+              b.originM + b.worldFromRoot * (b.rootSizeM * glm::dvec3(c & 1 ? 1 : 0, c & 2 ? 1 : 0, c & 4 ? 1 : 0));
+        std::array<Material, 6> faces;
+        for (int f = 0; f < 6; ++f) {
+          const Rgba8 colour = b.summary[static_cast<std::size_t>(f)];
+          faces[static_cast<std::size_t>(f)] = {colour.r, colour.g, colour.b, 255, 0};
+        }
+        addBox(boxes, corner, faces);
+        summarised[v.building] = true;
+        ++stats.asSummary;
+      }
+    }
+    if (Status s = drawBoxes(view, boxes); !s) return s;
+  }
+
   // One instanced draw per page, pages in the order of their nearest building; within a page
   // nearest first, so that early depth rejection spares what lies behind.
   std::vector<std::vector<HniInstance>> perPage(static_cast<std::size_t>(pages_.pageCount()));
   std::vector<int> pageOrder;
-  const auto add = [&](const Building& b) {
+  const auto add = [&](std::size_t i) {
+    if (summarised[i]) return;
+    const Building& b = buildings_[i];
     auto& instances = perPage[static_cast<std::size_t>(b.slot.page)];
     if (instances.empty()) pageOrder.push_back(b.slot.page);
     instances.push_back({b.slot.origin, b.originM, b.worldFromRoot});
@@ -162,13 +252,13 @@ Status CityRenderer::drawFrame(const Camera& camera, const RayCastOptions& optio
   };
   if (options_.frontToBack) {
     for (const Visible& v : visible)
-      if (buildings_[v.building].state == State::Loaded) add(buildings_[v.building]);
+      if (buildings_[v.building].state == State::Loaded) add(v.building);
   } else {
     std::vector<std::size_t> inOrder;
     for (const Visible& v : visible)
       if (buildings_[v.building].state == State::Loaded) inOrder.push_back(v.building);
     std::sort(inOrder.begin(), inOrder.end());
-    for (std::size_t i : inOrder) add(buildings_[i]);
+    for (std::size_t i : inOrder) add(i);
   }
   for (int page : pageOrder)
     hniRenderer_->draw(view, pages_.page(page), perPage[static_cast<std::size_t>(page)], options);

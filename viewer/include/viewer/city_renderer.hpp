@@ -15,6 +15,7 @@
 
 #include <nut/camera.hpp>
 #include <nut/error.hpp>
+#include <nut/hierarchy.hpp>
 #include <nut/raycast.hpp>
 #include <scene/city.hpp>
 
@@ -22,12 +23,20 @@
 #include <viewer/city_loader.hpp>
 #include <viewer/frame_view.hpp>
 #include <viewer/hni_renderer.hpp>
+#include <viewer/mesh_renderer.hpp>
 
 namespace nut::viewer {
 
 struct CityRendererOptions {
   bool frustumCulling = true;
   bool frontToBack = true;
+  // Boxes (drawn when the renderer has a MeshRenderer): a visible building not loaded yet as its
+  // box in a neutral grey (the manifest's bounds_m); a loaded building whose largest side spans
+  // fewer than summaryBelowPx pixels as its root block with each face its visual summary's colour
+  // (0: never); and a ground plane under the city.
+  bool proxies = true;
+  double summaryBelowPx = 0;
+  bool ground = false;
   int loaderThreads = 2;
   std::size_t maxOutstanding = 16;                 // requests in the loaders' hands at once
   std::size_t uploadBytesPerFrame = 4u << 20;      // at least one HNI a frame is uploaded
@@ -45,6 +54,8 @@ struct CityFrameStats {
   std::size_t drawn = 0;           // ray-cast this frame
   std::size_t culledByFrustum = 0; // outside the view (known boxes only)
   std::size_t waiting = 0;         // visible, not loaded yet
+  std::size_t proxies = 0;         // of those, drawn as their box
+  std::size_t asSummary = 0;       // loaded, drawn as their summary box
   std::size_t uploaded = 0;        // HNIs uploaded this frame
   std::size_t evicted = 0;         // buildings whose page was emptied, so far
   std::size_t refetched = 0;       // requests, so far, for buildings evicted before
@@ -57,8 +68,9 @@ struct CityFrameStats {
 class CityRenderer {
  public:
   // `base` is the manifest's folder (or URL prefix): a building's location is base + "/" + hni.
-  CityRenderer(const Gl& gl, const HniRenderer& hniRenderer, scene::CityManifest city, std::string base, Fetch fetch,
-               const CityRendererOptions& options);
+  // `meshRenderer` draws the proxies, summaries and ground; none are drawn without one.
+  CityRenderer(const Gl& gl, const HniRenderer& hniRenderer, const MeshRenderer* meshRenderer, scene::CityManifest city,
+               std::string base, Fetch fetch, const CityRendererOptions& options);
 
   // Takes what the loaders finished, uploads a slice, requests what the camera needs next and
   // draws into the bound framebuffer (its depth test and blending as HniRenderer::draw).
@@ -70,6 +82,7 @@ class CityRenderer {
   // The culling and order switches may change between frames (the viewer's overlay).
   void setFrustumCulling(bool on) { options_.frustumCulling = on; }
   void setFrontToBack(bool on) { options_.frontToBack = on; }
+  void setSummaryBelowPx(double px) { options_.summaryBelowPx = px; }
 
  private:
   enum class State { Unrequested, Requested, Loaded, Failed };
@@ -81,13 +94,17 @@ class CityRenderer {
     glm::dmat3 worldFromRoot{1.0};
     std::optional<WorldBox> bounds;  // the manifest's until loaded, then the image's
     AtlasSlot slot;
+    glm::dvec3 rootSizeM{0.0};       // once loaded: the root block's size and summary
+    VisualSummary summary{};
   };
   void receive(CityFrameStats& stats);
+  Status drawBoxes(const FrameView& view, const TriangleMesh& boxes) const;
   void upload(CityFrameStats& stats);
   bool evictLeastRecentlySeenPage();
 
   const Gl* gl_;
   const HniRenderer* hniRenderer_;
+  const MeshRenderer* meshRenderer_;
   scene::CityManifest city_;
   std::string base_;
   CityRendererOptions options_;
