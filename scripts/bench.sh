@@ -8,4 +8,6 @@ for bench in packer_bench lookup_bench grammar_bench render_bench load_bench sce
   echo "== $bench" >&2
   "$build/bench/$bench" --benchmark_out="out/bench/$bench.json" --benchmark_out_format=json
 done
+echo "== viewer frame time" >&2
+scripts/viewer-bench.sh "$build" out/bench/viewer
 echo "bench: results in out/bench/" >&2

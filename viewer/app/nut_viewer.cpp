@@ -35,7 +35,7 @@ int fail(const std::string& message, int code) {
 
 struct ViewerOptions {
   std::string city, size = "1280x720", cameraPath, screenshot, stats, gl = "osmesa", lookup = "exact";
-  int frames = 0, threads = 2, atlasPage = 4096;  // frames 0: one headless, until closed in a window
+  int frames = 0, threads = 2, atlasPage = 4096, hold = 0;  // frames 0: one headless, until closed in a window
   double settleSeconds = 30, budgetMb = 1024, lodPx = 0, summaryPx = 0;
   std::string lod = "off";
   bool headless = false, noFrustumCulling = false, noFrontToBack = false, noProxies = false;
@@ -168,7 +168,7 @@ int run(const ViewerOptions& o) {
   nlohmann::json frames = nlohmann::json::array();
   std::vector<std::string> failures;
   nut::viewer::CityFrameStats stats;
-  const auto drawOne = [&](const nut::Camera& camera, bool settling) -> nut::Status {
+  const auto drawOne = [&](const nut::Camera& camera, const char* phase) -> nut::Status {
     const auto start = std::chrono::steady_clock::now();
     target->bind();
     gl.ClearColor(nut::kBackground[0] / 255.0f, nut::kBackground[1] / 255.0f, nut::kBackground[2] / 255.0f, 1.0f);
@@ -183,7 +183,7 @@ int run(const ViewerOptions& o) {
       failures.push_back(f);
     }
     frames.push_back({{"ms", ms},
-                      {"settling", settling},
+                      {"phase", phase},
                       {"drawn", stats.drawn},
                       {"culled_frustum", stats.culledByFrustum},
                       {"waiting", stats.waiting},
@@ -199,15 +199,17 @@ int run(const ViewerOptions& o) {
   };
   const int pathFrames = std::max(1, o.frames);
   for (int f = 0; f < pathFrames; ++f)
-    if (nut::Status s = drawOne(cameraAt(pathFrames > 1 ? f / double(pathFrames - 1) : 1.0), false); !s)
+    if (nut::Status s = drawOne(cameraAt(pathFrames > 1 ? f / double(pathFrames - 1) : 1.0), "path"); !s)
       return fail(s.error().message, kInvalid);
   // The last view until everything it needs has streamed in, so the screenshot is complete.
   const auto settleStart = std::chrono::steady_clock::now();
   while (!renderer.settled()) {
     if (std::chrono::duration<double>(std::chrono::steady_clock::now() - settleStart).count() > o.settleSeconds)
       return fail("the city did not finish streaming in " + std::to_string(o.settleSeconds) + " s", kInvalid);
-    if (nut::Status s = drawOne(cameraAt(1.0), true); !s) return fail(s.error().message, kInvalid);
+    if (nut::Status s = drawOne(cameraAt(1.0), "settling"); !s) return fail(s.error().message, kInvalid);
   }
+  for (int f = 0; f < o.hold; ++f)
+    if (nut::Status s = drawOne(cameraAt(1.0), "holding"); !s) return fail(s.error().message, kInvalid);
   if (!o.screenshot.empty())
     if (nut::Status s = nut::writePng(o.screenshot, target->readColour()); !s) return fail(s.error().message, kUsage);
   if (!o.stats.empty()) {
@@ -251,6 +253,8 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember({"exact", "heuristic"}))
       ->capture_default_str();
   app.add_option("--threads", o.threads, "Loader threads")->capture_default_str()->check(CLI::Range(1, 64));
+  app.add_option("--hold", o.hold, "Headless: frames of the last view drawn after it has settled (timing)")
+      ->check(CLI::NonNegativeNumber);
   app.add_option("--settle-seconds", o.settleSeconds, "Longest wait for the last view to stream in")
       ->capture_default_str();
   app.add_option("--budget", o.budgetMb,
