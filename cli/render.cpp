@@ -3,6 +3,7 @@
 // and any --mesh in the same image.
 #include <chrono>
 #include <cstdio>
+#include <filesystem>
 #include <map>
 #include <memory>
 #include <string>
@@ -13,6 +14,7 @@
 #include <nut/png_io.hpp>
 #include <nut/raycast.hpp>
 
+#include <scene/city.hpp>
 #include <scene/scene.hpp>
 #include <scene/scene_render.hpp>
 #if NUT_HAVE_EMBREE
@@ -48,12 +50,19 @@ int renderWithGl(const RenderOptions& o, const scene::Scene& scene, const Camera
   auto gl = o.gl.open();
   if (!gl) return fail("GL: " + gl.error().message, kUnreadable);
   std::fprintf(stderr, "render: GL %s: %s\n", o.gl.context.c_str(), (*gl)->context().description().c_str());
-  // One shared image per file: the buildings that name it are instances of one atlas entry.
-  std::map<const Image*, std::shared_ptr<const Image>> images;
-  for (const PngFile& file : scene.files) images[&file.image] = std::make_shared<const Image>(file.image);
   Status added = Ok{};
-  for (const scene::PlacedHni& hni : scene.hnis)
-    if (added) added = (*gl)->addHni(images.at(hni.image), hni.originM, hni.worldFromRoot);
+  if (lowerExtension(o.input) == ".json") {
+    // A city streams through the viewer's renderer: atlas pages, culling, front-to-back order.
+    auto city = scene::readCityJson(o.input);
+    if (!city) return fail(city.error().message, kInvalid);
+    (*gl)->setCity(std::move(*city), std::filesystem::path(o.input).parent_path().string());
+  } else {
+    // One shared image per file: the buildings that name it are instances of one atlas entry.
+    std::map<const Image*, std::shared_ptr<const Image>> images;
+    for (const PngFile& file : scene.files) images[&file.image] = std::make_shared<const Image>(file.image);
+    for (const scene::PlacedHni& hni : scene.hnis)
+      if (added) added = (*gl)->addHni(images.at(hni.image), hni.originM, hni.worldFromRoot);
+  }
   for (const TriangleMesh& mesh : scene.meshes)
     if (added) added = (*gl)->addMesh(mesh);
   if (!added) return fail(added.error().message, kInvalid);

@@ -3,6 +3,8 @@
 
 #include <algorithm>
 #include <array>
+#include <chrono>
+#include <thread>
 
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>
@@ -157,16 +159,12 @@ Status CityRenderer::drawBoxes(const FrameView& view, const TriangleMesh& boxes)
   return Ok{};
 }
 
-Status CityRenderer::drawFrame(const Camera& camera, const RayCastOptions& options, CityFrameStats& stats) {
-  stats = {};
+// Receive, cull, upload a slice and request what the view needs next; the visible buildings,
+// nearest first.
+std::vector<CityRenderer::Visible> CityRenderer::prepare(const FrameView& view, CityFrameStats& stats) {
   ++frame_;
   receive(stats);
-  const FrameView view(camera);
-  // Distance of a building from the eye: to its box's centre, else to its origin.
-  struct Visible {
-    std::size_t building;
-    double distance;
-  };
+  const Camera& camera = view.camera;
   std::vector<Visible> visible;
   for (std::size_t i = 0; i < buildings_.size(); ++i) {
     const Building& b = buildings_[i];
@@ -175,6 +173,7 @@ Status CityRenderer::drawFrame(const Camera& camera, const RayCastOptions& optio
       ++stats.culledByFrustum;
       continue;
     }
+    // Distance of a building from the eye: to its box's centre, else to its origin.
     const glm::dvec3 centre = b.bounds ? b.bounds->centre() : b.originM;
     visible.push_back({i, glm::length(centre - camera.eye)});
     buildings_[i].lastSeen = frame_;
@@ -194,6 +193,27 @@ Status CityRenderer::drawFrame(const Camera& camera, const RayCastOptions& optio
     refetched_ += b.evicted ? 1 : 0;
     ++outstanding;
   }
+  settled_ = stats.waiting == 0 && uploadQueue_.empty() && loader_.outstanding() == 0;
+  return visible;
+}
+
+Status CityRenderer::streamIn(const Camera& camera, double timeoutSeconds) {
+  const FrameView view(camera);
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(timeoutSeconds);
+  while (true) {
+    CityFrameStats stats;
+    prepare(view, stats);
+    if (settled_) return Ok{};
+    if (std::chrono::steady_clock::now() > deadline)
+      return Error{"the city did not stream in within " + std::to_string(timeoutSeconds) + " s"};
+    std::this_thread::sleep_for(std::chrono::milliseconds(2));
+  }
+}
+
+Status CityRenderer::drawFrame(const Camera& camera, const RayCastOptions& options, CityFrameStats& stats) {
+  stats = {};
+  const FrameView view(camera);
+  const std::vector<Visible> visible = prepare(view, stats);
 
   // Boxes first, so that the ray casting behind them is rejected early: the ground, the proxies
   // of what is still streaming in, and the far buildings as their summaries.
@@ -270,7 +290,6 @@ Status CityRenderer::drawFrame(const Camera& camera, const RayCastOptions& optio
   stats.atlasBytes = pages_.bytes();
   stats.evicted = evicted_;
   stats.refetched = refetched_;
-  settled_ = stats.waiting == 0 && uploadQueue_.empty() && loader_.outstanding() == 0;
   if (const GLenum error = gl_->GetError(); error != GL_NO_ERROR) return Error{"GL frame: " + glErrorName(error)};
   return Ok{};
 }

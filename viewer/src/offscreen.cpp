@@ -30,6 +30,7 @@ Result<std::unique_ptr<OffscreenRenderer>> OffscreenRenderer::create(const Offsc
 OffscreenRenderer::~OffscreenRenderer() {
   if (context_) (void)context_->makeCurrent();
   meshes_.clear();
+  city_.reset();
   atlas_.reset();
   antiAliased_.reset();
   fxaa_.reset();
@@ -59,6 +60,12 @@ Status OffscreenRenderer::addMesh(const TriangleMesh& mesh) {
   if (!gpu) return gpu.error();
   meshes_.push_back(std::move(*gpu));
   return Ok{};
+}
+
+void OffscreenRenderer::setCity(scene::CityManifest city, std::string base) {
+  (void)context_->makeCurrent();
+  city_ = std::make_unique<CityRenderer>(context_->gl(), *hniRenderer_, nullptr, std::move(city), std::move(base),
+                                         localFiles(), CityRendererOptions{});
 }
 
 // One atlas just large enough for every distinct HNI image: the packer's width search, as HNI
@@ -124,6 +131,10 @@ Status OffscreenRenderer::draw(const Camera& camera, const RayCastOptions& optio
   const Gl& gl = context_->gl();
   if (Status s = prepareAtlas(); !s) return s;
   if (Status s = prepareTargets(camera.width, camera.height); !s) return s;
+  // A single image waits for the city's files before it draws, so that it is complete.
+  constexpr double kStreamTimeoutSeconds = 600;
+  if (city_)
+    if (Status s = city_->streamIn(camera, kStreamTimeoutSeconds); !s) return s;
   const FrameView view(camera);
   target_->bind();
   gl.ClearColor(kBackground[0] / 255.0f, kBackground[1] / 255.0f, kBackground[2] / 255.0f, 1.0f);
@@ -132,6 +143,11 @@ Status OffscreenRenderer::draw(const Camera& camera, const RayCastOptions& optio
   gl.Clear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
   for (const GpuMesh& mesh : meshes_) meshRenderer_->drawOpaque(view, mesh);
   if (atlas_) hniRenderer_->draw(view, *atlas_, instances_, options);
+  if (city_) {
+    CityFrameStats stats;
+    if (Status s = city_->drawFrame(camera, options, stats); !s) return s;
+    if (!stats.newFailures.empty()) return Error{stats.newFailures.front()};
+  }
   for (GpuMesh& mesh : meshes_) meshRenderer_->drawTranslucent(view, mesh);
   if (fxaa_) fxaa_->apply(*target_, *antiAliased_);
   gl.Finish();

@@ -76,6 +76,10 @@ class CityRenderer {
   // draws into the bound framebuffer (its depth test and blending as HniRenderer::draw).
   Status drawFrame(const Camera& camera, const RayCastOptions& options, CityFrameStats& stats);
 
+  // Streams in what the camera sees without drawing (a single image: `nut render --backend gl`),
+  // waiting at most timeoutSeconds.
+  Status streamIn(const Camera& camera, double timeoutSeconds);
+
   // No building left to load that the last frame could see, and nothing in the loaders' hands.
   bool settled() const { return settled_; }
 
@@ -97,6 +101,11 @@ class CityRenderer {
     glm::dvec3 rootSizeM{0.0};       // once loaded: the root block's size and summary
     VisualSummary summary{};
   };
+  struct Visible {
+    std::size_t building;
+    double distance;  // from the eye
+  };
+  std::vector<Visible> prepare(const FrameView& view, CityFrameStats& stats);
   void receive(CityFrameStats& stats);
   Status drawBoxes(const FrameView& view, const TriangleMesh& boxes) const;
   void upload(CityFrameStats& stats);

@@ -21,7 +21,9 @@
 #include <nut/error.hpp>
 #include <nut/image.hpp>
 #include <nut/raycast.hpp>
+#include <scene/city.hpp>
 
+#include <viewer/city_renderer.hpp>
 #include <viewer/context.hpp>
 #include <viewer/hni_renderer.hpp>
 #include <viewer/mesh_renderer.hpp>
@@ -56,6 +58,10 @@ class OffscreenRenderer {
   Status addHni(const Image& hni, const glm::dvec3& originM, const glm::dmat3& worldFromRoot = glm::dmat3(1.0));
   // Adds a mesh (world metres).
   Status addMesh(const TriangleMesh& mesh);
+  // Draws a city manifest's buildings through the streaming viewer's renderer (city_renderer.hpp:
+  // atlas pages, frustum culling, front-to-back order), fetched from `base` (the manifest's
+  // folder) before each frame is drawn, instead of HNIs added one by one.
+  void setCity(scene::CityManifest city, std::string base);
 
   // Anti-aliases the frames that follow with FXAA (shaders/fxaa.frag); off by default, and never
   // for frames compared with the CPU renderers, which do not anti-alias.
@@ -94,6 +100,7 @@ class OffscreenRenderer {
   std::unordered_set<const Image*> validated_;
   std::vector<HniInstance> instances_;
   std::vector<GpuMesh> meshes_;
+  std::unique_ptr<CityRenderer> city_;
 };
 
 }  // namespace nut::viewer
