@@ -192,18 +192,37 @@ TEST_F(StreamedCity, MatchesTheCpuCity) {
   expectAgree("overview", cpuRender(manifest, overview()), gl.image, kMinWithinPct);
 }
 
+// Each culling test, and the order, on or off: the settled street view is the same in every pixel.
+// Occlusion answers a frame late, so each case draws two frames more after settling.
 TEST_F(StreamedCity, CullingAndOrderChangeNoPixel) {
   const fs::path manifest = cityDir() / "city.json";
-  const Streamed culled = stream(manifest, street(), {});
+  const scene::CityManifest city = manifestAt(manifest);
+  const auto streamed = [&](const CityRendererOptions& options) {
+    return stream(city, cityDir().string(), localFiles(), {street()}, options, 2);
+  };
+  const Streamed culled = streamed({});
   EXPECT_GT(culled.stats.culledByFrustum, kBuildings / 2) << "the street view sees less than half the city";
+  EXPECT_GT(culled.stats.culledByOcclusion, 0u) << "some buildings in the view hide behind the first row";
   EXPECT_LT(culled.stats.loaded, kBuildings) << "what no frame could see was never loaded";
   CityRendererOptions everything;
   everything.frustumCulling = false;
+  everything.occlusionCulling = false;
   everything.frontToBack = false;
-  const Streamed all = stream(manifest, street(), everything);
-  EXPECT_EQ(all.stats.culledByFrustum, 0u);
+  const Streamed all = streamed(everything);
+  EXPECT_EQ(all.stats.culledByFrustum + all.stats.culledByOcclusion, 0u);
   EXPECT_EQ(all.stats.drawn, kBuildings);
   EXPECT_EQ(culled.image, all.image);
+  for (const auto& [name, change] : std::vector<std::pair<std::string, void (*)(CityRendererOptions&)>>{
+           {"no frustum culling", [](CityRendererOptions& o) { o.frustumCulling = false; }},
+           {"no occlusion culling", [](CityRendererOptions& o) { o.occlusionCulling = false; }},
+           {"no front-to-back order", [](CityRendererOptions& o) { o.frontToBack = false; }}}) {
+    CityRendererOptions one;
+    change(one);
+    EXPECT_EQ(streamed(one).image, culled.image) << name;
+  }
+  RecordProperty("drawn", std::to_string(culled.stats.drawn));
+  RecordProperty("culled_frustum", std::to_string(culled.stats.culledByFrustum));
+  RecordProperty("culled_occlusion", std::to_string(culled.stats.culledByOcclusion));
   expectAgree("street", cpuRender(manifest, street()), culled.image, kMinWithinPct);
 }
 

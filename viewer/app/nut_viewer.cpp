@@ -38,7 +38,7 @@ struct ViewerOptions {
   int frames = 0, threads = 2, atlasPage = 4096, hold = 0;  // frames 0: one headless, until closed in a window
   double settleSeconds = 30, budgetMb = 1024, lodPx = 0, summaryPx = 0;
   std::string lod = "off";
-  bool headless = false, noFrustumCulling = false, noFrontToBack = false, noProxies = false;
+  bool headless = false, noFrustumCulling = false, noOcclusionCulling = false, noFrontToBack = false, noProxies = false;
   std::optional<bool> ground;  // default: in the window, not headless
 };
 
@@ -136,6 +136,7 @@ int run(const ViewerOptions& o) {
   nut::viewer::CityRendererOptions options;
   options.frustumCulling = !o.noFrustumCulling;
   options.frontToBack = !o.noFrontToBack;
+  options.occlusionCulling = !o.noOcclusionCulling;
   options.loaderThreads = std::max(1, o.threads);
   options.atlasPageSize = o.atlasPage;
   const double pageMb = 4.0 * o.atlasPage * o.atlasPage / (1 << 20);
@@ -186,6 +187,7 @@ int run(const ViewerOptions& o) {
                       {"phase", phase},
                       {"drawn", stats.drawn},
                       {"culled_frustum", stats.culledByFrustum},
+                      {"culled_occlusion", stats.culledByOcclusion},
                       {"waiting", stats.waiting},
                       {"proxies", stats.proxies},
                       {"as_summary", stats.asSummary},
@@ -275,6 +277,7 @@ int main(int argc, char** argv) {
   app.add_flag("--ground,!--no-ground", o.ground, "A ground plane under the city (default: in the window only)");
   app.add_flag("--no-proxies", o.noProxies, "Draw nothing for buildings not loaded yet (default: a grey box)");
   app.add_flag("--no-frustum-culling", o.noFrustumCulling, "Draw buildings outside the view too");
+  app.add_flag("--no-occlusion-culling", o.noOcclusionCulling, "Draw buildings hidden behind others too");
   app.add_flag("--no-front-to-back", o.noFrontToBack, "Draw in manifest order instead of nearest first");
   app.footer(
       "Examples:\n  nut city --count 100 --out city100 && nut-viewer city100/city.json\n"

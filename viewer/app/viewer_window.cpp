@@ -103,7 +103,8 @@ int runWindow(const WindowRun& run) {
 
   FlyCamera fly(run.start);
   RayCastOptions cast = run.cast;
-  bool frustumCulling = run.options.frustumCulling, frontToBack = run.options.frontToBack, antiAlias = false;
+  bool frustumCulling = run.options.frustumCulling, occlusionCulling = run.options.occlusionCulling,
+       frontToBack = run.options.frontToBack, antiAlias = false;
   float lodPx = static_cast<float>(cast.lodPx), summaryPx = static_cast<float>(run.options.summaryBelowPx);
   std::optional<RenderTarget> frame, smoothed;
   CityFrameStats stats;
@@ -144,6 +145,7 @@ int runWindow(const WindowRun& run) {
     gl.DepthMask(GL_TRUE);
     gl.Clear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
     renderer.setFrustumCulling(frustumCulling);
+    renderer.setOcclusionCulling(occlusionCulling);
     renderer.setFrontToBack(frontToBack);
     cast.lodPx = lodPx;
     renderer.setSummaryBelowPx(summaryPx);
@@ -165,7 +167,8 @@ int runWindow(const WindowRun& run) {
     ImGui::Begin("nut-viewer", nullptr, ImGuiWindowFlags_AlwaysAutoResize | ImGuiWindowFlags_NoMove);
     ImGui::Text("%.1f fps, frame %.2f ms", seconds > 0 ? 1.0 / seconds : 0.0, frameMs);
     ImGui::Text("buildings: %zu known, %zu loaded, %zu failed", stats.known, stats.loaded, stats.failed);
-    ImGui::Text("this frame: %zu drawn, %zu culled, %zu waiting", stats.drawn, stats.culledByFrustum, stats.waiting);
+    ImGui::Text("this frame: %zu drawn, culled %zu by frustum and %zu by occlusion, %zu waiting", stats.drawn,
+                stats.culledByFrustum, stats.culledByOcclusion, stats.waiting);
     ImGui::Text("streamed %.2f MB, atlas %.0f MB, %zu evicted", stats.bytesStreamed / 1e6, stats.atlasBytes / 1048576.0,
                 stats.evicted);
     ImGui::ProgressBar(stats.known ? static_cast<float>(stats.loaded) / static_cast<float>(stats.known) : 1.0f);
@@ -173,6 +176,8 @@ int runWindow(const WindowRun& run) {
     ImGui::SliderFloat("LOD px (cells)", &lodPx, 0.0f, 16.0f, "%.1f");
     ImGui::SliderFloat("summary px (buildings)", &summaryPx, 0.0f, 64.0f, "%.0f");
     ImGui::Checkbox("frustum culling", &frustumCulling);
+    ImGui::SameLine();
+    ImGui::Checkbox("occlusion culling", &occlusionCulling);
     ImGui::SameLine();
     ImGui::Checkbox("front to back", &frontToBack);
     ImGui::SameLine();
@@ -185,6 +190,7 @@ int runWindow(const WindowRun& run) {
     ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
 
     frames.push_back({{"ms", frameMs}, {"drawn", stats.drawn}, {"culled_frustum", stats.culledByFrustum},
+                      {"culled_occlusion", stats.culledByOcclusion},
                       {"waiting", stats.waiting}, {"loaded", stats.loaded}});
     const bool last = run.frames > 0 && f + 1 >= run.frames && renderer.settled();
     if (last && !run.screenshot.empty()) {

@@ -50,7 +50,7 @@ CityRenderer::CityRenderer(const Gl& gl, const HniRenderer& hniRenderer, const M
     building.originM = b.positionM;
     building.worldFromRoot = scene::yawRotation(b.yawDeg);
     building.bounds = b.boundsM;
-    buildings_.push_back(building);
+    buildings_.push_back(std::move(building));
   }
 }
 
@@ -82,6 +82,8 @@ bool CityRenderer::evictLeastRecentlySeenPage() {
     if (b.state == State::Loaded && b.slot.page == page) {
       b.state = State::Unrequested;
       b.evicted = true;
+      b.occluded = false;
+      b.query = {};
       --loaded_;
       ++evicted_;
     }
@@ -151,6 +153,58 @@ std::array<glm::dvec3, 8> cornersOf(const WorldBox& box) {
 
 }  // namespace
 
+// The answers of last frame's queries that have arrived; a query still in flight keeps its
+// building's previous answer.
+void CityRenderer::collectOcclusion() {
+  for (Building& b : buildings_) {
+    if (b.query.get() == 0) continue;
+    GLuint available = 0;
+    gl_->GetQueryObjectuiv(b.query.get(), GL_QUERY_RESULT_AVAILABLE, &available);
+    if (!available) continue;
+    GLuint passed = 0;
+    gl_->GetQueryObjectuiv(b.query.get(), GL_QUERY_RESULT, &passed);
+    b.occluded = passed == 0;
+    b.query = {};
+  }
+}
+
+// Whether the eye lies in the building's probe box (its box enlarged), which then cannot test it.
+namespace {
+WorldBox probeBox(const WorldBox& box) {
+  const glm::dvec3 grow = 0.01 * box.size() + 0.05;
+  return {box.min - grow, box.max + grow};
+}
+bool holds(const WorldBox& box, const glm::dvec3& p) {
+  return p.x >= box.min.x && p.y >= box.min.y && p.z >= box.min.z && p.x <= box.max.x && p.y <= box.max.y &&
+         p.z <= box.max.z;
+}
+}  // namespace
+
+// After the frame: one query per building drawn (or skipped as occluded), its probe box against
+// the frame's depth.
+Status CityRenderer::issueOcclusionQueries(const FrameView& view, const std::vector<std::size_t>& tested) {
+  TriangleMesh probes;
+  std::vector<std::size_t> order;
+  for (std::size_t i : tested) {
+    Building& b = buildings_[i];
+    if (b.query.get() != 0) continue;  // the last one has not answered yet
+    addBox(probes, cornersOf(probeBox(*b.bounds)), {kProxyGrey, kProxyGrey, kProxyGrey, kProxyGrey, kProxyGrey, kProxyGrey});
+    order.push_back(i);
+  }
+  if (order.empty()) return Ok{};
+  auto gpu = GpuMesh::upload(*gl_, probes);
+  if (!gpu) return gpu.error();
+  constexpr GLsizei kBoxVertices = 36;
+  for (std::size_t k = 0; k < order.size(); ++k) {
+    Building& b = buildings_[order[k]];
+    b.query = makeQuery(*gl_);
+    gl_->BeginQuery(GL_ANY_SAMPLES_PASSED, b.query.get());
+    meshRenderer_->probe(view, *gpu, static_cast<GLint>(k) * kBoxVertices, kBoxVertices);
+    gl_->EndQuery(GL_ANY_SAMPLES_PASSED);
+  }
+  return Ok{};
+}
+
 Status CityRenderer::drawBoxes(const FrameView& view, const TriangleMesh& boxes) const {
   if (boxes.triangles.empty()) return Ok{};
   auto gpu = GpuMesh::upload(*gl_, boxes);
@@ -213,6 +267,8 @@ Status CityRenderer::streamIn(const Camera& camera, double timeoutSeconds) {
 Status CityRenderer::drawFrame(const Camera& camera, const RayCastOptions& options, CityFrameStats& stats) {
   stats = {};
   const FrameView view(camera);
+  const bool occlusion = options_.occlusionCulling && meshRenderer_;
+  if (occlusion) collectOcclusion();
   const std::vector<Visible> visible = prepare(view, stats);
 
   // Boxes first, so that the ray casting behind them is rejected early: the ground, the proxies
@@ -262,9 +318,16 @@ Status CityRenderer::drawFrame(const Camera& camera, const RayCastOptions& optio
   // nearest first, so that early depth rejection spares what lies behind.
   std::vector<std::vector<HniInstance>> perPage(static_cast<std::size_t>(pages_.pageCount()));
   std::vector<int> pageOrder;
+  std::vector<std::size_t> tested;  // the buildings this frame's occlusion queries test
   const auto add = [&](std::size_t i) {
     if (summarised[i]) return;
     const Building& b = buildings_[i];
+    const bool testable = occlusion && !holds(probeBox(*b.bounds), camera.eye);
+    if (testable) tested.push_back(i);
+    if (testable && b.occluded) {
+      ++stats.culledByOcclusion;
+      return;
+    }
     auto& instances = perPage[static_cast<std::size_t>(b.slot.page)];
     if (instances.empty()) pageOrder.push_back(b.slot.page);
     instances.push_back({b.slot.origin, b.originM, b.worldFromRoot});
@@ -282,6 +345,8 @@ Status CityRenderer::drawFrame(const Camera& camera, const RayCastOptions& optio
   }
   for (int page : pageOrder)
     hniRenderer_->draw(view, pages_.page(page), perPage[static_cast<std::size_t>(page)], options);
+  if (occlusion)
+    if (Status s = issueOcclusionQueries(view, tested); !s) return s;
 
   stats.known = buildings_.size();
   stats.loaded = loaded_;

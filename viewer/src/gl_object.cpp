@@ -36,4 +36,10 @@ GlObject makeFramebuffer(const Gl& gl) {
   return {gl, name, [](const Gl& g, GLuint n) { g.DeleteFramebuffers(1, &n); }};
 }
 
+GlObject makeQuery(const Gl& gl) {
+  GLuint name = 0;
+  gl.GenQueries(1, &name);
+  return {gl, name, [](const Gl& g, GLuint n) { g.DeleteQueries(1, &n); }};
+}
+
 }  // namespace nut::viewer

@@ -109,6 +109,20 @@ void MeshRenderer::drawOpaque(const FrameView& view, const GpuMesh& mesh) const 
   gl.UseProgram(0);
 }
 
+void MeshRenderer::probe(const FrameView& view, const GpuMesh& mesh, GLint first, GLsizei count) const {
+  const Gl& gl = *gl_;
+  setUniforms(view, mesh);
+  gl.DepthFunc(GL_LEQUAL);
+  gl.DepthMask(GL_FALSE);
+  gl.ColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+  gl.BindVertexArray(mesh.vertexArray_.get());
+  gl.DrawArrays(GL_TRIANGLES, first, count);
+  gl.BindVertexArray(0);
+  gl.ColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+  gl.DepthMask(GL_TRUE);
+  gl.UseProgram(0);
+}
+
 void MeshRenderer::drawTranslucent(const FrameView& view, GpuMesh& mesh) const {
   if (mesh.translucent_.empty()) return;
   const Gl& gl = *gl_;

@@ -22,6 +22,7 @@
 #include <viewer/atlas_pages.hpp>
 #include <viewer/city_loader.hpp>
 #include <viewer/frame_view.hpp>
+#include <viewer/gl_object.hpp>
 #include <viewer/hni_renderer.hpp>
 #include <viewer/mesh_renderer.hpp>
 
@@ -29,6 +30,11 @@ namespace nut::viewer {
 
 struct CityRendererOptions {
   bool frustumCulling = true;
+  // Occlusion culling (needs a MeshRenderer): each frame, every drawn building's box, enlarged by
+  // 1 % and 5 cm, is depth-tested against the finished frame in an occlusion query; a building
+  // none of whose box passed is skipped the next frame, and tested again after it. A building
+  // whose box holds the eye is always drawn.
+  bool occlusionCulling = true;
   bool frontToBack = true;
   // Boxes (drawn when the renderer has a MeshRenderer): a visible building not loaded yet as its
   // box in a neutral grey (the manifest's bounds_m); a loaded building whose largest side spans
@@ -53,6 +59,7 @@ struct CityFrameStats {
   std::size_t failed = 0;          // missing, unreadable, corrupt or invalid: never drawn
   std::size_t drawn = 0;           // ray-cast this frame
   std::size_t culledByFrustum = 0; // outside the view (known boxes only)
+  std::size_t culledByOcclusion = 0;  // in the view, hidden in the last frame that tested it
   std::size_t waiting = 0;         // visible, not loaded yet
   std::size_t proxies = 0;         // of those, drawn as their box
   std::size_t asSummary = 0;       // loaded, drawn as their summary box
@@ -86,6 +93,7 @@ class CityRenderer {
   // The culling and order switches may change between frames (the viewer's overlay).
   void setFrustumCulling(bool on) { options_.frustumCulling = on; }
   void setFrontToBack(bool on) { options_.frontToBack = on; }
+  void setOcclusionCulling(bool on) { options_.occlusionCulling = on; }
   void setSummaryBelowPx(double px) { options_.summaryBelowPx = px; }
 
  private:
@@ -100,6 +108,8 @@ class CityRenderer {
     AtlasSlot slot;
     glm::dvec3 rootSizeM{0.0};       // once loaded: the root block's size and summary
     VisualSummary summary{};
+    GlObject query;                  // its occlusion query, while one is in flight
+    bool occluded = false;           // the last query's answer
   };
   struct Visible {
     std::size_t building;
@@ -108,6 +118,8 @@ class CityRenderer {
   std::vector<Visible> prepare(const FrameView& view, CityFrameStats& stats);
   void receive(CityFrameStats& stats);
   Status drawBoxes(const FrameView& view, const TriangleMesh& boxes) const;
+  void collectOcclusion();
+  Status issueOcclusionQueries(const FrameView& view, const std::vector<std::size_t>& drawn);
   void upload(CityFrameStats& stats);
   bool evictLeastRecentlySeenPage();
 

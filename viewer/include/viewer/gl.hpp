@@ -76,7 +76,13 @@ namespace nut::viewer {
   X(PFNGLVERTEXATTRIBIPOINTERPROC, VertexAttribIPointer)              \
   X(PFNGLVERTEXATTRIBDIVISORPROC, VertexAttribDivisor)                \
   X(PFNGLDRAWARRAYSPROC, DrawArrays)                                  \
-  X(PFNGLDRAWARRAYSINSTANCEDPROC, DrawArraysInstanced)
+  X(PFNGLDRAWARRAYSINSTANCEDPROC, DrawArraysInstanced)                \
+  X(PFNGLCOLORMASKPROC, ColorMask)                                    \
+  X(PFNGLGENQUERIESPROC, GenQueries)                                  \
+  X(PFNGLDELETEQUERIESPROC, DeleteQueries)                            \
+  X(PFNGLBEGINQUERYPROC, BeginQuery)                                  \
+  X(PFNGLENDQUERYPROC, EndQuery)                                      \
+  X(PFNGLGETQUERYOBJECTUIVPROC, GetQueryObjectuiv)
 
 struct Gl {
 #define NUT_GL_MEMBER(type, name) type name = nullptr;

@@ -49,5 +49,6 @@ Status checkTextureSize(const Gl& gl, const std::string& what, int width, int he
 GlObject makeBuffer(const Gl& gl);
 GlObject makeVertexArray(const Gl& gl);
 GlObject makeFramebuffer(const Gl& gl);
+GlObject makeQuery(const Gl& gl);
 
 }  // namespace nut::viewer

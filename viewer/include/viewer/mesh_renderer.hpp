@@ -57,6 +57,9 @@ class MeshRenderer {
 
   // Opaque triangles with depth test (GL_LESS) and depth write, no blending.
   void drawOpaque(const FrameView& view, const GpuMesh& mesh) const;
+  // Depth-tests the opaque vertices [first, first + count) of the mesh (GL_LEQUAL) without writing
+  // colour or depth: an occlusion query's probe.
+  void probe(const FrameView& view, const GpuMesh& mesh, GLint first, GLsizei count) const;
   // Translucent triangles sorted back to front (by centroid distance), blended over what is drawn,
   // depth-tested without writing depth. Draw them after everything opaque and after the HNIs.
   void drawTranslucent(const FrameView& view, GpuMesh& mesh) const;
