@@ -9,6 +9,7 @@
 
 #include <nut/hni.hpp>
 #include <nut/png_io.hpp>
+#include <scene/obj.hpp>
 
 namespace nut::viewer {
 
@@ -36,10 +37,10 @@ CityLoader::~CityLoader() {
   for (std::thread& t : threads_) t.join();
 }
 
-void CityLoader::request(std::size_t building, std::string location) {
+void CityLoader::request(std::size_t building, std::string location, std::string complement) {
   {
     const std::lock_guard lock(mutex_);
-    queue_.emplace_back(building, std::move(location));
+    queue_.push_back({building, std::move(location), std::move(complement)});
     ++outstanding_;
   }
   wake_.notify_one();
@@ -58,9 +59,28 @@ std::size_t CityLoader::outstanding() const {
   return outstanding_;
 }
 
+// A complementary mesh through the same fetch as the HNIs: the OBJ, and the MTL files it names
+// beside it (a missing MTL is the reader's warning, not an error).
+Result<TriangleMesh> CityLoader::readComplement(const std::string& location, std::size_t& bytes) const {
+  auto obj = fetch_(location);
+  if (!obj) return obj.error();
+  bytes += obj->size();
+  const scene::MtlReader mtl = [&](const std::string& path) -> Result<std::string> {
+    auto text = fetch_(path);
+    if (!text) return text.error();
+    bytes += text->size();
+    return std::string(text->begin(), text->end());
+  };
+  scene::ObjReadOptions options;
+  options.oneMesh = true;
+  auto contents = scene::readObjText(std::string(obj->begin(), obj->end()), location, mtl, options);
+  if (!contents) return contents.error();
+  return std::move(contents->objects.front());
+}
+
 void CityLoader::work() {
   while (true) {
-    std::pair<std::size_t, std::string> job;
+    Job job;
     {
       std::unique_lock lock(mutex_);
       wake_.wait(lock, [this] { return stopping_ || !queue_.empty(); });
@@ -69,19 +89,26 @@ void CityLoader::work() {
       queue_.pop_front();
     }
     LoadedHni loaded;
-    loaded.building = job.first;
-    auto bytes = fetch_(job.second);
+    loaded.building = job.building;
+    auto bytes = fetch_(job.location);
     if (!bytes) {
       loaded.image = bytes.error();
     } else {
       loaded.bytes = bytes->size();
-      auto png = readPngBytes(job.second, std::move(*bytes));
+      auto png = readPngBytes(job.location, std::move(*bytes));
       if (!png)
         loaded.image = png.error();
       else if (Status s = validate(png->image); !s)
-        loaded.image = Error{job.second + ": not a valid HNI: " + s.error().message};
+        loaded.image = Error{job.location + ": not a valid HNI: " + s.error().message};
       else
         loaded.image = std::move(png->image);
+    }
+    if (loaded.image && !job.complement.empty()) {
+      auto mesh = readComplement(job.complement, loaded.bytes);
+      if (mesh)
+        loaded.complement = std::move(*mesh);
+      else
+        loaded.image = mesh.error();
     }
     const std::lock_guard lock(mutex_);
     finished_.push_back(std::move(loaded));

@@ -84,6 +84,7 @@ bool CityRenderer::evictLeastRecentlySeenPage() {
       b.evicted = true;
       b.occluded = false;
       b.query = {};
+      b.complement.reset();
       --loaded_;
       ++evicted_;
     }
@@ -112,6 +113,19 @@ void CityRenderer::upload(CityFrameStats& stats) {
     }
     b.slot = *slot;
     b.bounds = HniRayCaster(*loaded.image, b.originM, b.worldFromRoot).bounds();
+    if (loaded.complement && meshRenderer_) {
+      auto mesh = GpuMesh::upload(*gl_, *loaded.complement);
+      if (!mesh) {
+        b.state = State::Failed;
+        ++failed_;
+        stats.newFailures.push_back(city_.buildings[loaded.building].name + ": complementary mesh: " + mesh.error().message);
+        continue;
+      }
+      // Culled and tested as one: the box holds the HNI and its mesh.
+      b.bounds->min = glm::min(b.bounds->min, mesh->bounds().min);
+      b.bounds->max = glm::max(b.bounds->max, mesh->bounds().max);
+      b.complement.emplace(std::move(*mesh));
+    }
     const HniView hni(*loaded.image);
     const BlockHeader root = hni.header(hni.fileRecord().root);
     b.rootSizeM = glm::dvec3(root.sizeUnits) * format::kMetresPerUnit;
@@ -242,7 +256,10 @@ std::vector<CityRenderer::Visible> CityRenderer::prepare(const FrameView& view, 
     if (b.state == State::Loaded) continue;
     ++stats.waiting;
     if (b.state != State::Unrequested || outstanding >= options_.maxOutstanding) continue;
-    loader_.request(v.building, base_ + "/" + city_.buildings[v.building].hni);
+    const scene::CityBuilding& entry = city_.buildings[v.building];
+    // Without a MeshRenderer there is nothing to draw a complementary mesh with: not fetched.
+    const bool mesh = meshRenderer_ && !entry.complement.empty();
+    loader_.request(v.building, base_ + "/" + entry.hni, mesh ? base_ + "/" + entry.complement : "");
     b.state = State::Requested;
     refetched_ += b.evicted ? 1 : 0;
     ++outstanding;
@@ -318,7 +335,8 @@ Status CityRenderer::drawFrame(const Camera& camera, const RayCastOptions& optio
   // nearest first, so that early depth rejection spares what lies behind.
   std::vector<std::vector<HniInstance>> perPage(static_cast<std::size_t>(pages_.pageCount()));
   std::vector<int> pageOrder;
-  std::vector<std::size_t> tested;  // the buildings this frame's occlusion queries test
+  std::vector<std::size_t> tested;    // the buildings this frame's occlusion queries test
+  std::vector<std::size_t> withMesh;  // drawn, with a complementary mesh
   const auto add = [&](std::size_t i) {
     if (summarised[i]) return;
     const Building& b = buildings_[i];
@@ -328,6 +346,7 @@ Status CityRenderer::drawFrame(const Camera& camera, const RayCastOptions& optio
       ++stats.culledByOcclusion;
       return;
     }
+    if (b.complement) withMesh.push_back(i);
     auto& instances = perPage[static_cast<std::size_t>(b.slot.page)];
     if (instances.empty()) pageOrder.push_back(b.slot.page);
     instances.push_back({b.slot.origin, b.originM, b.worldFromRoot});
@@ -343,8 +362,11 @@ Status CityRenderer::drawFrame(const Camera& camera, const RayCastOptions& optio
     std::sort(inOrder.begin(), inOrder.end());
     for (std::size_t i : inOrder) add(i);
   }
+  // Opaque meshes before the HNIs and translucent ones after, as OffscreenRenderer draws a scene.
+  for (std::size_t i : withMesh) meshRenderer_->drawOpaque(view, *buildings_[i].complement);
   for (int page : pageOrder)
     hniRenderer_->draw(view, pages_.page(page), perPage[static_cast<std::size_t>(page)], options);
+  for (std::size_t i : withMesh) meshRenderer_->drawTranslucent(view, *buildings_[i].complement);
   if (occlusion)
     if (Status s = issueOcclusionQueries(view, tested); !s) return s;
 

@@ -1,6 +1,7 @@
 // viewer/city_loader.hpp — the streaming viewer's loader threads: each building's PNG is fetched,
 // decoded and validated off the render thread, in the order the renderer asks for them, and handed
-// back whole. A failure (missing, unreadable, corrupt, invalid) comes back as the error.
+// back whole, with the building's complementary mesh when it has one. A failure (missing,
+// unreadable, corrupt, invalid) comes back as the error.
 #pragma once
 
 #include <condition_variable>
@@ -9,12 +10,14 @@
 #include <deque>
 #include <functional>
 #include <mutex>
+#include <optional>
 #include <string>
 #include <thread>
 #include <vector>
 
 #include <nut/error.hpp>
 #include <nut/image.hpp>
+#include <nut/triangle_mesh.hpp>
 
 namespace nut::viewer {
 
@@ -26,7 +29,8 @@ Fetch localFiles();
 
 struct LoadedHni {
   std::size_t building = 0;
-  Result<Image> image = Error{"not loaded"};  // validated
+  Result<Image> image = Error{"not loaded"};  // validated; the building's error when a file failed
+  std::optional<TriangleMesh> complement;     // when the building has one
   std::size_t bytes = 0;                      // fetched
 };
 
@@ -37,8 +41,9 @@ class CityLoader {
   CityLoader(const CityLoader&) = delete;
   CityLoader& operator=(const CityLoader&) = delete;
 
-  // Queues a building's PNG; requests are served in the order made.
-  void request(std::size_t building, std::string location);
+  // Queues a building's PNG, and its complementary mesh (OBJ, with its MTL files beside it) when
+  // `complement` is not empty; requests are served in the order made.
+  void request(std::size_t building, std::string location, std::string complement = {});
   // What has finished since the last call.
   std::vector<LoadedHni> takeFinished();
   // Requested and not yet taken.
@@ -46,11 +51,16 @@ class CityLoader {
 
  private:
   void work();
+  Result<TriangleMesh> readComplement(const std::string& location, std::size_t& bytes) const;
 
   Fetch fetch_;
   mutable std::mutex mutex_;
   std::condition_variable wake_;
-  std::deque<std::pair<std::size_t, std::string>> queue_;
+  struct Job {
+    std::size_t building;
+    std::string location, complement;
+  };
+  std::deque<Job> queue_;
   std::vector<LoadedHni> finished_;
   std::size_t outstanding_ = 0;
   bool stopping_ = false;

@@ -75,7 +75,8 @@ struct CityFrameStats {
 class CityRenderer {
  public:
   // `base` is the manifest's folder (or URL prefix): a building's location is base + "/" + hni.
-  // `meshRenderer` draws the proxies, summaries and ground; none are drawn without one.
+  // `meshRenderer` draws the complementary meshes, proxies, summaries and ground, and probes
+  // for occlusion; without one none of these are drawn or fetched.
   CityRenderer(const Gl& gl, const HniRenderer& hniRenderer, const MeshRenderer* meshRenderer, scene::CityManifest city,
                std::string base, Fetch fetch, const CityRendererOptions& options);
 
@@ -108,6 +109,7 @@ class CityRenderer {
     AtlasSlot slot;
     glm::dvec3 rootSizeM{0.0};       // once loaded: the root block's size and summary
     VisualSummary summary{};
+    std::optional<GpuMesh> complement;  // once loaded, when the manifest names one (world metres)
     GlObject query;                  // its occlusion query, while one is in flight
     bool occluded = false;           // the last query's answer
   };
