@@ -34,6 +34,11 @@ for view in overview street; do
   "$build/viewer/nut-viewer" "$city" --headless --gl "$gl" --size $size --camera-path "$out/$view.json" --hold 10 \
     --screenshot "$out/$view-gl.png" --stats "$out/$view-gl.json" 2>/dev/null
 done
+# What each culling test saves, in the same run: the street view with each turned off.
+"$build/viewer/nut-viewer" "$city" --headless --gl "$gl" --size $size --camera-path "$out/street.json" --hold 10 \
+  --no-occlusion-culling --stats "$out/street-no-occlusion-gl.json" 2>/dev/null
+"$build/viewer/nut-viewer" "$city" --headless --gl "$gl" --size $size --camera-path "$out/street.json" --hold 10 \
+  --no-occlusion-culling --no-frustum-culling --stats "$out/street-no-culling-gl.json" 2>/dev/null
 "$build/viewer/nut-viewer" "$city" --headless --gl "$gl" --size $size --camera-path "$out/flight.json" --frames 120 \
   --stats "$out/flight-gl.json" 2>/dev/null
 python3 - "$out" "$gl" <<'PY'
@@ -42,12 +47,15 @@ out, gl = sys.argv[1], sys.argv[2]
 def held(name):
     frames = json.load(open(f"{out}/{name}-gl.json"))["frames"]
     return statistics.median(f["ms"] for f in frames if f["phase"] == "holding"), frames[-1]
-print(f"| view (1280x720, 225 buildings) | CPU caster, 2 threads (ms) | GL caster, {gl} (ms) | drawn | culled |")
-print("|---|---|---|---|---|")
+print(f"| view (1280x720, 225 buildings) | CPU caster, 2 threads (ms) | GL caster, {gl} (ms) | drawn | culled by frustum | culled by occlusion |")
+print("|---|---|---|---|---|---|")
 for view in ("overview", "street"):
     cpu = statistics.median(json.load(open(f"{out}/{view}-cpu{r}.json"))["seconds"] for r in (1, 2, 3)) * 1000
     ms, last = held(view)
-    print(f"| {view} | {cpu:.0f} | {ms:.0f} | {last['drawn']} | {last['culled_frustum']} |")
+    print(f"| {view} | {cpu:.0f} | {ms:.0f} | {last['drawn']} | {last['culled_frustum']} | {last['culled_occlusion']} |")
+for view, label in (("street-no-occlusion", "street, occlusion culling off"), ("street-no-culling", "street, both culling tests off")):
+    ms, last = held(view)
+    print(f"| {label} | | {ms:.0f} | {last['drawn']} | {last['culled_frustum']} | {last['culled_occlusion']} |")
 flight = json.load(open(f"{out}/flight-gl.json"))
 path = [f for f in flight["frames"] if f["phase"] == "path"][1:]  # the first builds the programs
 ms = sorted(f["ms"] for f in path)
@@ -55,4 +63,7 @@ print()
 print(f"flight: {len(path)} frames along the street, GL {gl}: median {statistics.median(ms):.0f} ms, "
       f"90th percentile {ms[len(ms) * 9 // 10]:.0f} ms, max {ms[-1]:.0f} ms; "
       f"{flight['loaded']} of {flight['known']} buildings loaded, {flight['bytes_streamed']:,} bytes streamed")
+mean = lambda key: statistics.mean(f[key] for f in path)
+print(f"flight, per frame on average: {mean('drawn'):.1f} buildings ray-cast, {mean('culled_frustum'):.1f} culled by "
+      f"the frustum, {mean('culled_occlusion'):.1f} by occlusion, {mean('proxies'):.1f} drawn as proxies")
 PY
