@@ -41,12 +41,14 @@ namespace fs = std::filesystem;
 constexpr std::size_t kBuildings = 60;
 constexpr double kMinWithinPct = 99.5;
 
-fs::path cityDir() { return gltest::outputDir("city") / "city"; }
+fs::path cityDir(std::size_t count = kBuildings) {
+  return gltest::outputDir("city") / (count == kBuildings ? std::string("city") : "city" + std::to_string(count));
+}
 
-// The city `nut city --count 60 --seed 3` writes, with quick PNGs.
-void writeCity() {
-  if (fs::exists(cityDir() / "city.json")) return;
-  fs::create_directories(cityDir());
+// The city `nut city --count N --seed 3` writes, with quick PNGs.
+void writeCity(std::size_t count = kBuildings) {
+  if (fs::exists(cityDir(count) / "city.json")) return;
+  fs::create_directories(cityDir(count));
   std::vector<grammar::Grammar> grammars;
   for (const char* name : {"marvie_building", "pga_complex_house", "pga_random_rule", "pga_random_windows"}) {
     auto g = grammar::readGrammar(std::string(NUT_SOURCE_DIR) + "/samples/grammars/" + name + ".grammar");
@@ -54,16 +56,16 @@ void writeCity() {
     grammars.push_back(std::move(*g));
   }
   scene::CityManifest city{"city", {}};
-  const auto plan = grammar::planCity(grammars, kBuildings, 3);
+  const auto plan = grammar::planCity(grammars, count, 3);
   for (std::size_t i = 0; i < plan.size(); ++i) {
     auto built = grammar::buildCityBuilding(grammars[plan[i].grammar], plan[i]);
     ASSERT_TRUE(built) << built.error().message;
     std::string name = "b";
     name += std::to_string(i);  // not "b" + to_string: gcc 12's false -Wrestrict
-    ASSERT_TRUE(writeHni((cityDir() / (name + ".png")).string(), built->compiled.image, {name}, PngEffort::Quick));
+    ASSERT_TRUE(writeHni((cityDir(count) / (name + ".png")).string(), built->compiled.image, {name}, PngEffort::Quick));
     city.buildings.push_back({name, name + ".png", "", built->positionM, built->yawDeg, built->boundsM});
   }
-  ASSERT_TRUE(scene::writeCityJson((cityDir() / "city.json").string(), city));
+  ASSERT_TRUE(scene::writeCityJson((cityDir(count) / "city.json").string(), city));
 }
 
 Camera overview() {
@@ -183,6 +185,19 @@ void expectAgree(const std::string& name, const Image& expected, const Image& ac
 struct StreamedCity : ::testing::Test {
   void SetUp() override { writeCity(); }
 };
+
+// The city of a hundred buildings, all in view.
+TEST_F(StreamedCity, AHundredBuildingsMatchTheCpuCity) {
+  writeCity(100);
+  const fs::path manifest = cityDir(100) / "city.json";
+  Camera camera = overview();
+  camera.eye = {-90, 120, -100};
+  camera.target = {110, 0, 90};
+  const Streamed gl = stream(manifest, camera, {});
+  EXPECT_EQ(gl.stats.loaded, 100u);
+  EXPECT_EQ(gl.stats.culledByFrustum, 0u) << "all in view";
+  expectAgree("hundred", cpuRender(manifest, camera), gl.image, kMinWithinPct);
+}
 
 TEST_F(StreamedCity, MatchesTheCpuCity) {
   const fs::path manifest = cityDir() / "city.json";
