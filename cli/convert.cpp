@@ -17,6 +17,7 @@
 
 #include <converter/convert.hpp>
 #include <nut/png_io.hpp>
+#include <nut/raycast.hpp>
 #include <scene/city.hpp>
 
 #include "commands.hpp"
@@ -149,6 +150,7 @@ struct ConvertedBuilding {
   std::string name, hni, complement, error;
   int exitCode = kOk;
   glm::dvec3 originM{0.0};
+  WorldBox boundsM;  // the placed root block's, for the manifest
   converter::ConvertReport report;
 };
 
@@ -185,6 +187,7 @@ std::vector<ConvertedBuilding> convertSideBySide(const ConvertCliOptions& o, std
           b.exitCode = kUnreadable;
         }
         b.originM = conversion->originM;
+        b.boundsM = HniRayCaster(conversion->image, conversion->originM).bounds();
         b.report = std::move(conversion->report);
       }
       const std::lock_guard lock(progressMutex);
@@ -216,7 +219,7 @@ int convertCity(const ConvertCliOptions& o, scene::ObjContents& obj, const conve
   for (const ConvertedBuilding& b : buildings) {
     if (b.exitCode != kOk) return fail(b.error, b.exitCode);
     // Yaw 0: a turned building carries its yaw inside its HNI, which is in the world frame.
-    city.buildings.push_back({b.name, b.hni, b.complement, b.originM, 0.0});
+    city.buildings.push_back({b.name, b.hni, b.complement, b.originM, 0.0, b.boundsM});
     reports.push_back(nlohmann::json::parse(converter::reportJson(b.report)));
     if (!o.quiet) printSummary(b.report, (fs::path(o.output) / b.hni).string());
   }

@@ -18,7 +18,9 @@
 #include <nut/hni.hpp>
 #include <nut/image_compare.hpp>
 #include <nut/png_io.hpp>
+#include <nut/raycast.hpp>
 #include <scene/city.hpp>
+#include <scene/scene.hpp>
 
 #include "cli_support.hpp"
 #include "converter/converter_support.hpp"
@@ -249,6 +251,20 @@ TEST(RenderCli, ACityManifestRendersLikeItsSourceOnBothBackends) {
   CliRun r = nut("convert " + sample("street.obj") + " -o " + out("street-city") + "/ --quiet");
   ASSERT_EQ(r.exitCode, 0) << r.stderrText;
   const std::string city = out("street-city") + "/city.json";
+  {
+    // Each building's box is in the manifest, as its placed HNI gives it, for a viewer to cull by.
+    auto manifest = scene::readCityJson(city);
+    auto placed = scene::loadScene(city, {});
+    ASSERT_TRUE(manifest && placed);
+    for (std::size_t i = 0; i < manifest->buildings.size(); ++i) {
+      ASSERT_TRUE(manifest->buildings[i].boundsM) << i;
+      const WorldBox box = HniRayCaster(*placed->hnis[i].image, placed->hnis[i].originM).bounds();
+      for (int a = 0; a < 3; ++a) {
+        EXPECT_NEAR(manifest->buildings[i].boundsM->min[a], box.min[a], 1e-9);
+        EXPECT_NEAR(manifest->buildings[i].boundsM->max[a], box.max[a], 1e-9);
+      }
+    }
+  }
   r = nut("render " + city + " -o " + out("street-city-cpu.png") + " --size 640x360");
   ASSERT_EQ(r.exitCode, 0) << r.stderrText;
   EXPECT_NE(r.stderrText.find("4 HNIs, 4 meshes"), std::string::npos) << r.stderrText;
