@@ -126,11 +126,7 @@ Streamed stream(const scene::CityManifest& city, const std::string& base, const 
   cast.lookup = Lookup::Exact;
   const auto frame = [&](const Camera& view) {
     const auto start = std::chrono::steady_clock::now();
-    target->bind();
-    gl.ClearColor(kBackground[0] / 255.0f, kBackground[1] / 255.0f, kBackground[2] / 255.0f, 1.0f);
-    gl.ClearDepth(1.0);
-    gl.DepthMask(GL_TRUE);
-    gl.Clear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+    target->bindCleared();
     const Status s = renderer.drawFrame(view, cast, out.stats);
     EXPECT_TRUE(s) << s.error().message;
     gl.Finish();

@@ -171,11 +171,7 @@ int run(const ViewerOptions& o) {
   nut::viewer::CityFrameStats stats;
   const auto drawOne = [&](const nut::Camera& camera, const char* phase) -> nut::Status {
     const auto start = std::chrono::steady_clock::now();
-    target->bind();
-    gl.ClearColor(nut::kBackground[0] / 255.0f, nut::kBackground[1] / 255.0f, nut::kBackground[2] / 255.0f, 1.0f);
-    gl.ClearDepth(1.0);
-    gl.DepthMask(GL_TRUE);
-    gl.Clear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+    target->bindCleared();
     if (nut::Status s = renderer.drawFrame(camera, cast, stats); !s) return s;
     gl.Finish();
     const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();

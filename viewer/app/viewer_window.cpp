@@ -139,11 +139,7 @@ int runWindow(const WindowRun& run) {
     camera.width = width, camera.height = height;
 
     const auto start = std::chrono::steady_clock::now();
-    frame->bind();
-    gl.ClearColor(kBackground[0] / 255.0f, kBackground[1] / 255.0f, kBackground[2] / 255.0f, 1.0f);
-    gl.ClearDepth(1.0);
-    gl.DepthMask(GL_TRUE);
-    gl.Clear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+    frame->bindCleared();
     renderer.setFrustumCulling(frustumCulling);
     renderer.setOcclusionCulling(occlusionCulling);
     renderer.setFrontToBack(frontToBack);

@@ -136,11 +136,7 @@ Status OffscreenRenderer::draw(const Camera& camera, const RayCastOptions& optio
   if (city_)
     if (Status s = city_->streamIn(camera, kStreamTimeoutSeconds); !s) return s;
   const FrameView view(camera);
-  target_->bind();
-  gl.ClearColor(kBackground[0] / 255.0f, kBackground[1] / 255.0f, kBackground[2] / 255.0f, 1.0f);
-  gl.ClearDepth(1.0);
-  gl.DepthMask(GL_TRUE);
-  gl.Clear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+  target_->bindCleared();
   for (const GpuMesh& mesh : meshes_) meshRenderer_->drawOpaque(view, mesh);
   if (atlas_) hniRenderer_->draw(view, *atlas_, instances_, options);
   if (city_) {

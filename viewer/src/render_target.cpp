@@ -5,6 +5,8 @@
 #include <cstring>
 #include <string>
 
+#include <nut/camera.hpp>
+
 namespace nut::viewer {
 
 namespace {
@@ -49,6 +51,14 @@ Result<RenderTarget> RenderTarget::create(const Gl& gl, int width, int height) {
 void RenderTarget::bind() const {
   gl_->BindFramebuffer(GL_FRAMEBUFFER, framebuffer_.get());
   gl_->Viewport(0, 0, width_, height_);
+}
+
+void RenderTarget::bindCleared() const {
+  bind();
+  gl_->ClearColor(kBackground[0] / 255.0f, kBackground[1] / 255.0f, kBackground[2] / 255.0f, 1.0f);
+  gl_->ClearDepth(1.0);
+  gl_->DepthMask(GL_TRUE);
+  gl_->Clear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
 }
 
 Image RenderTarget::readColour() const {

@@ -19,6 +19,9 @@ class RenderTarget {
 
   // Binds the framebuffer for drawing and sets the viewport to the whole target.
   void bind() const;
+  // bind(), then clears the colour to the background (docs/RENDERING.md) and the depth to 1: the
+  // start of every frame.
+  void bindCleared() const;
   // The colour, row 0 at the top (images are stored top first, GL reads bottom first), alpha
   // forced to 255: the HNI program leaves its transmittance there.
   Image readColour() const;
