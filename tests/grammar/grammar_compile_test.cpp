@@ -17,20 +17,10 @@
 #include <nut/png_encode.hpp>
 #include <nut/raycast.hpp>
 
+#include "grammar_samples.hpp"
+
 namespace nut::grammar {
 namespace {
-
-std::string samplePath(const std::string& name) {
-  return std::string(NUT_SOURCE_DIR) + "/samples/grammars/" + name + ".grammar";
-}
-
-std::vector<std::string> sampleNames() {
-  std::vector<std::string> names;
-  for (const auto& e : std::filesystem::directory_iterator(std::string(NUT_SOURCE_DIR) + "/samples/grammars"))
-    if (e.path().extension() == ".grammar") names.push_back(e.path().stem().string());
-  std::sort(names.begin(), names.end());
-  return names;
-}
 
 CompiledGrammar compiled(const std::string& text, const DeriveOptions& options = {}) {
   auto g = parseGrammar(text, "g");
@@ -72,11 +62,11 @@ std::vector<std::array<std::uint8_t, 3>> runsAlong(const CompiledGrammar& c, glm
 }
 
 TEST(GrammarCompile, EverySampleCompilesValidatesAndDecodes) {
-  const auto names = sampleNames();
+  const auto names = testing::sampleGrammarNames();
   ASSERT_GE(names.size(), 4u);
   for (const std::string& name : names) {
     SCOPED_TRACE(name);
-    auto g = readGrammar(samplePath(name));
+    auto g = readGrammar(testing::sampleGrammarPath(name));
     ASSERT_TRUE(g) << g.error().message;
     auto c = compileGrammar(*g);
     ASSERT_TRUE(c) << c.error().message;
@@ -92,7 +82,7 @@ TEST(GrammarCompile, EverySampleCompilesValidatesAndDecodes) {
 // 2.5 m top floor of 3 m tiles (5), and between them 6.5 m of 2.8 m floors (2) of 2 m tiles
 // (15 / 2 = 7.5, rounded: 8). Each window is 1 m wide and 1.3 m high, centred in its tile.
 TEST(GrammarCompile, FigureTwelveHasTheWindowsAndFloorsItsArithmeticSays) {
-  auto g = readGrammar(samplePath("krecklau_figure12"));
+  auto g = readGrammar(testing::sampleGrammarPath("krecklau_figure12"));
   ASSERT_TRUE(g) << g.error().message;
   auto c = compileGrammar(*g);
   ASSERT_TRUE(c) << c.error().message;
@@ -152,7 +142,7 @@ TEST(GrammarCompile, EverySampleHasTheWindowsItsSizesSay) {
   };
   for (const auto& c : cases) {
     SCOPED_TRACE(c.sample);
-    auto g = readGrammar(samplePath(c.sample));
+    auto g = readGrammar(testing::sampleGrammarPath(c.sample));
     ASSERT_TRUE(g) << g.error().message;
     auto compiledSample = compileGrammar(*g);
     ASSERT_TRUE(compiledSample) << compiledSample.error().message;
@@ -212,7 +202,7 @@ TEST(GrammarCompile, AlikeTilesAreOneWrappedRedirection) {
 }
 
 TEST(GrammarCompile, TheSameSeedGivesTheSameBytesAndOtherSeedsOtherFacades) {
-  auto g = readGrammar(samplePath("krecklau_figure12"));
+  auto g = readGrammar(testing::sampleGrammarPath("krecklau_figure12"));
   ASSERT_TRUE(g);
   const auto bytes = [&](std::uint64_t seed) {
     auto c = compileGrammar(*g, {.seed = seed});
@@ -294,7 +284,7 @@ TEST(GrammarCompile, AnIntrusionIsARecessOfItsDepth) {
 // front and back walls are clipped to [0.3, 3.7] m, which drops the outer wall strip of the first
 // and the last tile on every floor (38 quads a floor there); and one roof and one floor quad.
 TEST(GrammarCompile, TheFrontsMeshHasTwoTrianglesPerFacadeTerminal) {
-  auto g = readGrammar(samplePath("pga_simple_house"));
+  auto g = readGrammar(testing::sampleGrammarPath("pga_simple_house"));
   ASSERT_TRUE(g) << g.error().message;
   auto c = compileGrammar(*g);
   ASSERT_TRUE(c) << c.error().message;

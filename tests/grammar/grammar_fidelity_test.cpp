@@ -17,6 +17,7 @@
 #include <nut/png_io.hpp>
 #include <nut/raycast.hpp>
 
+#include "grammar_samples.hpp"
 #include "test_files.hpp"
 
 namespace nut::grammar {
@@ -51,15 +52,11 @@ std::vector<Camera> views(const WorldBox& box) {
 }
 
 TEST(GrammarFidelity, EverySampleRendersAsItsOwnMesh) {
-  std::vector<std::filesystem::path> samples;
-  for (const auto& e : std::filesystem::directory_iterator(std::string(NUT_SOURCE_DIR) + "/samples/grammars"))
-    if (e.path().extension() == ".grammar") samples.push_back(e.path());
-  std::sort(samples.begin(), samples.end());
+  const std::vector<std::string> samples = testing::sampleGrammarNames();
   ASSERT_GE(samples.size(), 4u);
-  for (const auto& path : samples) {
-    const std::string name = path.stem().string();
+  for (const std::string& name : samples) {
     SCOPED_TRACE(name);
-    auto g = readGrammar(path.string());
+    auto g = readGrammar(testing::sampleGrammarPath(name));
     ASSERT_TRUE(g) << g.error().message;
     auto c = compileGrammar(*g, {.seed = 5});
     ASSERT_TRUE(c) << c.error().message;

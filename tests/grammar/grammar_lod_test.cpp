@@ -3,10 +3,7 @@
 // picture as close to a supersampled full render as the one-ray-per-pixel full render is.
 #include <gtest/gtest.h>
 
-#include <algorithm>
-#include <filesystem>
 #include <string>
-#include <vector>
 
 #include <grammar/compile.hpp>
 #include <nut/camera.hpp>
@@ -16,19 +13,13 @@
 #include <nut/raycast.hpp>
 #include <nut/units.hpp>
 
+#include "grammar_samples.hpp"
+
 namespace nut::grammar {
 namespace {
 
-std::vector<std::string> sampleNames() {
-  std::vector<std::string> names;
-  for (const auto& e : std::filesystem::directory_iterator(std::string(NUT_SOURCE_DIR) + "/samples/grammars"))
-    if (e.path().extension() == ".grammar") names.push_back(e.path().stem().string());
-  std::sort(names.begin(), names.end());
-  return names;
-}
-
 CompiledGrammar compiledWithLod(const std::string& name) {
-  auto g = readGrammar(std::string(NUT_SOURCE_DIR) + "/samples/grammars/" + name + ".grammar");
+  auto g = readGrammar(testing::sampleGrammarPath(name));
   EXPECT_TRUE(g) << g.error().message;
   auto c = compileGrammar(*g, {}, LodMeasureOptions{});
   EXPECT_TRUE(c) << c.error().message;
@@ -86,7 +77,7 @@ TEST_P(GrammarLod, FromAfarAutoIsAsCloseToASupersampledRenderAsFullDetail) {
   EXPECT_TRUE(anySummary) << "no summary stood in at any distance";
 }
 
-INSTANTIATE_TEST_SUITE_P(Samples, GrammarLod, ::testing::ValuesIn(sampleNames()));
+INSTANTIATE_TEST_SUITE_P(Samples, GrammarLod, ::testing::ValuesIn(testing::sampleGrammarNames()));
 
 }  // namespace
 }  // namespace nut::grammar
