@@ -182,16 +182,20 @@ void CityRenderer::collectOcclusion() {
   }
 }
 
-// Whether the eye lies in the building's probe box (its box enlarged), which then cannot test it.
 namespace {
+
+// A building's box enlarged by 1 % and 5 cm, so that its own surfaces never hide its probe.
 WorldBox probeBox(const WorldBox& box) {
   const glm::dvec3 grow = 0.01 * box.size() + 0.05;
   return {box.min - grow, box.max + grow};
 }
+
+// Whether p lies in the box: an eye inside a probe box cannot test it.
 bool holds(const WorldBox& box, const glm::dvec3& p) {
   return p.x >= box.min.x && p.y >= box.min.y && p.z >= box.min.z && p.x <= box.max.x && p.y <= box.max.y &&
          p.z <= box.max.z;
 }
+
 }  // namespace
 
 // After the frame: one query per building drawn (or skipped as occluded), its probe box against
