@@ -14,7 +14,10 @@
 #include <thread>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
 #include <grammar/city.hpp>
+#include <grammar/derive.hpp>
 #include <nut/hni.hpp>
 #include <nut/png_io.hpp>
 #include <scene/city.hpp>
@@ -30,7 +33,7 @@ namespace {
 
 struct CityCliOptions {
   std::size_t count = 0;
-  std::string out, pngEffort = "small";
+  std::string out, pngEffort = "small", layout = "streets", report;
   std::vector<std::string> grammars;
   std::uint64_t seed = 0;
   int threads = 0;
@@ -45,6 +48,7 @@ struct WrittenBuilding {
   double yawDeg = 0;
   WorldBox boundsM;
   std::size_t pixelsHash = 0, pngBytes = 0;
+  std::size_t meshTriangles = 0, meshVertices = 0;  // the derivation's own mesh, for --report
 };
 
 std::string buildingName(std::size_t i) {
@@ -89,6 +93,17 @@ WrittenBuilding writeBuilding(const CityCliOptions& o, const std::vector<grammar
   w.boundsM = built->boundsM;
   w.pixelsHash = std::hash<std::string_view>{}(
       std::string_view(reinterpret_cast<const char*>(image.pixels.data()), image.pixels.size()));
+  if (!o.report.empty()) {
+    // What the same building costs as a mesh: the grammar's own geometry, every box closed.
+    auto mesh = grammar::derivationMesh(built->compiled.derivation);
+    if (!mesh) {
+      w.error = buildingName(i) + ": " + g.file + ": " + mesh.error().message;
+      w.exitCode = kInvalid;
+      return w;
+    }
+    w.meshTriangles = mesh->triangles.size();
+    w.meshVertices = mesh->positions.size();
+  }
   return w;
 }
 
@@ -109,7 +124,8 @@ int run(const CityCliOptions& o) {
   fs::create_directories(o.out, ec);
   if (ec) return fail(o.out + ": cannot create folder (" + ec.message() + ")", kUnreadable);
 
-  const std::vector<grammar::PlannedBuilding> plan = grammar::planCity(grammars, o.count, o.seed);
+  const std::vector<grammar::PlannedBuilding> plan = grammar::planCity(
+      grammars, o.count, o.seed, o.layout == "grid" ? grammar::CityLayout::Grid : grammar::CityLayout::Streets);
   std::vector<WrittenBuilding> written(plan.size());
   ProgressBar bar(!o.quiet, "city", fs::path(o.out).filename().string());
   const auto start = std::chrono::steady_clock::now();
@@ -135,7 +151,7 @@ int run(const CityCliOptions& o) {
   std::map<std::size_t, std::size_t> firstWithHash;
   scene::CityManifest city;
   city.name = fs::path(o.out).filename().string();
-  std::size_t pngBytes = 0;
+  std::size_t pngBytes = 0, meshTriangles = 0, meshVertices = 0;
   for (std::size_t i = 0; i < written.size(); ++i) {
     for (std::uint64_t offset = 1; written[i].exitCode == kOk && firstWithHash.count(written[i].pixelsHash); ++offset) {
       if (offset > 16) return fail(buildingName(i) + ": no distinct building in 16 seeds", kInvalid);
@@ -145,15 +161,29 @@ int run(const CityCliOptions& o) {
     if (w.exitCode != kOk) return fail(w.error, w.exitCode);
     firstWithHash.emplace(w.pixelsHash, i);
     pngBytes += w.pngBytes;
+    meshTriangles += w.meshTriangles;
+    meshVertices += w.meshVertices;
     city.buildings.push_back({buildingName(i), buildingName(i) + ".png", "", w.positionM, w.yawDeg, w.boundsM});
   }
   const std::string manifest = (fs::path(o.out) / "city.json").string();
   if (Status s = scene::writeCityJson(manifest, city); !s) return fail(s.error().message, kUnreadable);
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  if (!o.report.empty()) {
+    const nlohmann::json report = {
+        {"buildings", city.buildings.size()},
+        {"seed", o.seed},
+        {"layout", o.layout},
+        {"threads", workers},
+        {"seconds", seconds},
+        {"buildings_per_second", static_cast<double>(city.buildings.size()) / seconds},
+        {"png_bytes", pngBytes},
+        {"grammar_mesh", {{"triangles", meshTriangles}, {"vertices", meshVertices}}}};
+    if (Status s = writeTextFile(o.report, report.dump(2) + "\n"); !s) return fail(s.error().message, kUnreadable);
+  }
   if (!o.quiet)
     std::fprintf(stderr, "city: wrote %zu buildings (%zu bytes PNG, %zu per building) and %s in %.1f s\n",
                  city.buildings.size(), pngBytes, city.buildings.empty() ? 0 : pngBytes / city.buildings.size(),
-                 manifest.c_str(),
-                 std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+                 manifest.c_str(), seconds);
   return kOk;
 }
 
@@ -168,6 +198,15 @@ void addCityCommand(CLI::App& app, int& exitCode) {
   cmd->add_option("--grammar", o->grammars,
                   "A building grammar (a W,H,D @size), taken in turn with the others (repeatable); default: the "
                   "sample buildings marvie_building, pga_complex_house, pga_random_rule, pga_random_windows");
+  cmd->add_option("--layout", o->layout,
+                  "streets: rows of lots up to 240 m along each street; grid: a square city of 30 m lots, a "
+                  "cross street every 8 (docs/CITY.md)")
+      ->check(CLI::IsMember({"streets", "grid"}))
+      ->capture_default_str();
+  cmd->add_option("--report", o->report,
+                  "Write a JSON report: buildings per second, PNG bytes, and the triangles and vertices of the "
+                  "grammar's own meshes of the same buildings")
+      ->check(outputExtension(".json", "JSON"));
   cmd->add_flag("--lod", o->lod, "Measure each building's level of detail, as nut grammar --lod");
   cmd->add_option("--png-effort", o->pngEffort,
                   "small: zlib, milliseconds per building; smallest: Zopfli, 5-15 % smaller and about 50 ms more")
@@ -178,6 +217,7 @@ void addCityCommand(CLI::App& app, int& exitCode) {
   cmd->add_flag("--quiet", o->quiet, "No progress or summary on stderr");
   cmd->footer(
       "Examples:\n  nut city --count 100 --out city100 --seed 1\n"
+      "  nut city --count 8464 --out city8464 --layout grid --report city8464.json\n"
       "  nut render city100/city.json -o city100.png --size 1280x720\n\n" +
       std::string(kExitCodesHelp));
   cmd->callback([o, &exitCode] { exitCode = run(*o); });

@@ -41,6 +41,7 @@ struct RenderOptions {
   double lodPx = 0;
   int maxIterations = 512;
   int threads = 0;
+  bool heatMap = false;
 };
 
 #if NUT_HAVE_GL
@@ -93,8 +94,10 @@ int renderOnCpu(const RenderOptions& o, const scene::Scene& scene, const Camera&
   std::unique_ptr<const scene::MeshTracer> meshes = std::move(*traced);
 #else
   if (!scene.meshes.empty())
-    return fail(o.input + ": this nut was built without the Embree mesh reference (NUT_BUILD_EMBREE=OFF), so the cpu "
-                "back-end cannot draw meshes", kUsage);
+    return fail(o.input +
+                    ": this nut was built without the Embree mesh reference (NUT_BUILD_EMBREE=OFF), so the cpu "
+                    "back-end cannot draw meshes",
+                kUsage);
   std::unique_ptr<const scene::MeshTracer> meshes;
 #endif
   const scene::SceneRenderer renderer(scene.hnis, std::move(meshes));
@@ -135,6 +138,7 @@ int run(const RenderOptions& o) {
   options.lodPx = o.lodPx;
   options.lodAuto = o.lod == "auto";
   options.maxIterations = o.maxIterations;
+  options.heatMap = o.heatMap;
   std::fprintf(stderr, "render: %s (%zu HNI%s, %zu mesh%s), %dx%d, %s lookup\n", o.input.c_str(), scene.hnis.size(),
                scene.hnis.size() == 1 ? "" : "s", scene.meshes.size(), scene.meshes.size() == 1 ? "" : "es",
                camera->width, camera->height, o.lookup.c_str());
@@ -197,6 +201,9 @@ void addRenderCommand(CLI::App& app, int& exitCode) {
   cmd->add_option("--max-iter", o->maxIterations, "Iteration cap per ray (capped rays are magenta)")
       ->default_val(512)
       ->check(CLI::Range(1, 1000000));
+  cmd->add_flag("--heat-map", o->heatMap,
+                "Draw each surface in the colour of the traversal iterations its ray took, dark blue (few) to red "
+                "(the cap), log scale (docs/RENDERING.md)");
   // Exact by default on both back-ends: the heuristic places a sub-block up to 2 mm off its
   // neighbours, which leaves single-pixel holes along block seams, and the fetch it saves buys no
   // measurable time on a CPU or on llvmpipe (render_bench, gl_bench; docs/RENDERING.md).
@@ -213,6 +220,7 @@ void addRenderCommand(CLI::App& app, int& exitCode) {
       "Examples:\n  nut render samples/hni/building.png -o building.png --size 1280x720 --stats stats.json\n"
       "  nut render samples/hni/building.png -o building-gl.png --backend gl --gl egl\n"
       "  nut render grid/city.json -o grid.png --lod auto   # after nut grammar --lod\n"
+      "  nut render samples/hni/building.png -o heat.png --heat-map   # where the iterations go\n"
       "  nut render carpark.png -o carpark-render.png --mesh carpark-rest.obj\n"
       "  nut render street/city.json -o street.png        # after nut convert street.obj -o street/\n\n" +
       std::string(kExitCodesHelp));

@@ -14,3 +14,12 @@ vec3 shade(vec3 albedo, vec3 normal, vec3 rayDirection) {
   float light = kAmbient + (1.0 - kAmbient) * max(0.0, dot(normal, kLightDirection));
   return floor(min(vec3(255.0), albedo * light) + 0.5);
 }
+
+// The iteration heat-map (nut/heat_map.hpp heatColour): the ramp at log2(1 + iterations) over
+// log2(1 + maxIterations), rounded half up to the byte.
+vec3 heatColour(int iterations, int maxIterations) {
+  float scale = log2(1.0 + float(max(1, maxIterations)));
+  float t = clamp(log2(1.0 + float(max(0, iterations))) / scale, 0.0, 1.0) * float(kHeatRamp.length() - 1);
+  int stop = min(int(t), kHeatRamp.length() - 2);
+  return floor(mix(kHeatRamp[stop], kHeatRamp[stop + 1], t - float(stop)) + 0.5);
+}

@@ -32,6 +32,7 @@ uniform float uPixelAngle;   // the angle one pixel subtends, radians
 uniform float uLodPx;        // level of detail: 0 = full detail
 uniform bool uLodAuto;       // level of detail from the footprints records carry (--lod auto)
 uniform int uMaxIterations;  // cell visits and landings per ray
+uniform bool uHeatMap;       // draw opaque hits in the colour of their iterations (nut/heat_map.hpp)
 // Exact metadata lookup (two fetches) instead of the heuristic (one): NUT_EXACT_LOOKUP is defined
 // by the program's builder (nut::viewer::HniRenderer), one program per mode.
 const bool kExactLookup = NUT_EXACT_LOOKUP != 0;
@@ -187,8 +188,10 @@ float windowDepth(float t, vec3 direction) {
 }
 
 // An opaque surface at tHit: the composited colour, rounded as on the CPU, replaces what is behind.
-void finishHit(float tHit, vec3 colour, vec3 direction) {
-  vec3 c = floor(min(vec3(255.0), gComposite + gTransmittance * colour) + 0.5);
+// In the heat-map, the colour of the iterations taken instead, untinted.
+void finishHit(float tHit, vec3 colour, vec3 direction, int iterations) {
+  vec3 c = uHeatMap ? heatColour(iterations, uMaxIterations)
+                    : floor(min(vec3(255.0), gComposite + gTransmittance * colour) + 0.5);
   fragColour = vec4(c / 255.0, 0.0);
   gl_FragDepth = windowDepth(tHit, direction);
 }
@@ -253,7 +256,7 @@ void main() {
       vec3 normalWorld = hit.t == t ? L.entryNormal : normalize(L.toWorld * normalize(hit.normal / size));
       vec3 colour = shade(vec3(m.rgb), normalWorld, direction);
       if (m.a == 255u) {
-        finishHit(hit.t, colour, direction);
+        finishHit(hit.t, colour, direction, iterations);
         return;
       }
       if (firstTranslucent < 0.0) firstTranslucent = hit.t;
@@ -276,7 +279,7 @@ void main() {
       uvec4 s = hniTexel(record.target + ivec2(kHeaderSummary + side, 0));
       vec3 colour = shade(vec3(s.rgb), normalWorld, direction);
       if (s.a == 255u) {
-        finishHit(t, colour, direction);
+        finishHit(t, colour, direction, iterations);
         return;
       }
       if (firstTranslucent < 0.0) firstTranslucent = t;

@@ -16,6 +16,7 @@
 #include <glm/geometric.hpp>
 #include <glm/matrix.hpp>
 
+#include <nut/heat_map.hpp>
 #include <nut/hierarchy.hpp>
 #include <nut/render_loop.hpp>
 #include <nut/solids.hpp>
@@ -39,15 +40,15 @@ Float3 toArray(const glm::vec3& v) { return {v.x, v.y, v.z}; }
 // to create.
 struct Level {
   int block;
-  Float3 o, d;           // the ray in this block's frame, units (mm)
-  Float3 invD;           // 1 / d: the traversal multiplies instead of dividing
-  glm::mat3 toWorld;     // rotation from this frame to the world
+  Float3 o, d;        // the ray in this block's frame, units (mm)
+  Float3 invD;        // 1 / d: the traversal multiplies instead of dividing
+  glm::mat3 toWorld;  // rotation from this frame to the world
   std::uint8_t wrap;
-  float tExit;           // the level ends here (box or parent cell exit)
+  float tExit;  // the level ends here (box or parent cell exit)
   Int3 cell;
-  Float3 lo, hi;         // the cell's boundaries along each axis, within the tile
-  Float3 tile;           // start of the current tile (multiple of D) on wrapped axes
-  Float3 tNext;          // ray parameter where the ray leaves the cell, per axis
+  Float3 lo, hi;  // the cell's boundaries along each axis, within the tile
+  Float3 tile;    // start of the current tile (multiple of D) on wrapped axes
+  Float3 tNext;   // ray parameter where the ray leaves the cell, per axis
   // The face through which the ray entered the visible part of the current cell: a boundary
   // perpendicular to entryAxis of this block (a step or the block's box), or, when entryAxis is
   // -1, the face the level below entered through when this level landed (that level does not
@@ -171,7 +172,12 @@ std::size_t argMin(const Float3& v) { return v[0] <= v[1] ? (v[0] <= v[2] ? 0 : 
 
 HniRayCaster::HniRayCaster(const Image& image, const glm::dvec3& originM, const glm::dmat3& worldFromRoot,
                            std::optional<BlockId> rootBlock)
-    : image_(image), view_(image), originM_(originM), rootFromWorld_(glm::transpose(worldFromRoot)), worldFromRoot_(worldFromRoot), blockByHeader_(256 * 256, -1) {
+    : image_(image),
+      view_(image),
+      originM_(originM),
+      rootFromWorld_(glm::transpose(worldFromRoot)),
+      worldFromRoot_(worldFromRoot),
+      blockByHeader_(256 * 256, -1) {
   file_ = view_.fileRecord();
   for (int b = 0; b < file_.blockCount; ++b) {
     const TexelAddress at = view_.blockAddress(file_, b);
@@ -220,7 +226,8 @@ int HniRayCaster::blockAt(TexelAddress header) const {
 }
 
 WorldBox HniRayCaster::bounds() const {
-  const glm::dvec3 size = glm::dvec3(blocks_[static_cast<std::size_t>(root_)].header.sizeUnits) * format::kMetresPerUnit;
+  const glm::dvec3 size =
+      glm::dvec3(blocks_[static_cast<std::size_t>(root_)].header.sizeUnits) * format::kMetresPerUnit;
   const glm::dmat3 worldFromRoot = glm::transpose(rootFromWorld_);
   WorldBox box{originM_, originM_};
   for (int c = 0; c < 8; ++c) {
@@ -406,7 +413,8 @@ class HniRayCaster::Walk {
     result_.distanceM = tHit * format::kMetresPerUnit;
     result_.normal = glm::dvec3(normalWorld);
     if (glm::dot(result_.normal, direction_) > 0) result_.normal = -result_.normal;
-    result_.colour = composite_.finish(colour);
+    result_.colour =
+        options_.heatMap ? heatColour(result_.iterations, options_.maxIterations) : composite_.finish(colour);
     return true;
   }
 
@@ -449,7 +457,8 @@ RenderOutput renderRaysWith(const Camera& camera, const Trace& trace, int thread
   const int count = forEachPixelInTiles(camera.width, camera.height, threads, [&](int x, int y) {
     const glm::dvec3 dir = rays.direction(x, y);
     const RayResult r = trace(camera.eye, dir, pixelAngle);
-    const std::size_t i = static_cast<std::size_t>(y) * static_cast<std::size_t>(camera.width) + static_cast<std::size_t>(x);
+    const std::size_t i =
+        static_cast<std::size_t>(y) * static_cast<std::size_t>(camera.width) + static_cast<std::size_t>(x);
     std::uint8_t* p = out.colour.at(x, y);
     p[0] = r.colour[0], p[1] = r.colour[1], p[2] = r.colour[2], p[3] = 255;
     if (r.hit) {
@@ -482,7 +491,10 @@ RenderOutput renderRays(const Camera& camera, const RayFunction& trace, int thre
 RenderOutput renderHni(const HniRayCaster& caster, const Camera& camera, const RayCastOptions& options, int threads,
                        RenderStats* stats) {
   return renderRaysWith(
-      camera, [&](const glm::dvec3& eye, const glm::dvec3& dir, double pixelAngle) { return caster.trace(eye, dir, pixelAngle, options); },
+      camera,
+      [&](const glm::dvec3& eye, const glm::dvec3& dir, double pixelAngle) {
+        return caster.trace(eye, dir, pixelAngle, options);
+      },
       threads, stats);
 }
 

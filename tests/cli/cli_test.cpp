@@ -1,10 +1,10 @@
 // The commands users check and look at results with, run as a user runs them: `nut validate`,
-// `nut compare`, `nut export-mesh`, `nut render-mesh`, `nut render --depth --stats` and `nut
-// info`; and what `nut` itself answers (unknown commands, --version, output names of another
-// format). Each test knows its answer independently (images built here with known differences, the
-// HNI's own decode, the PFM layout, the version in CMakeLists.txt), and bad input must give one
-// `error:` line and the documented exit status: 1 invalid input, 2 usage error or unreadable file.
-// (`nut convert` and the scene renders: converter_cli_test.cpp.)
+// `nut compare`, `nut export-mesh`, `nut render-mesh`, `nut render --depth --stats --heat-map`
+// and `nut info`; and what `nut` itself answers (unknown commands, --version, output names of
+// another format). Each test knows its answer independently (images built here with known
+// differences, the HNI's own decode, the PFM layout, the version in CMakeLists.txt), and bad input
+// must give one `error:` line and the documented exit status: 1 invalid input, 2 usage error or
+// unreadable file. (`nut convert` and the scene renders: converter_cli_test.cpp.)
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -19,6 +19,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include <nut/camera.hpp>
+#include <nut/heat_map.hpp>
 #include <nut/hni.hpp>
 #include <nut/png_io.hpp>
 #include <nut/raycast.hpp>
@@ -228,6 +230,30 @@ TEST(RenderCli, DepthIsAPfmOfTheImageAndStatsSayWhatRan) {
   EXPECT_EQ(stats.at("height").get<int>(), 30);
   EXPECT_EQ(stats.at("lookup").get<std::string>(), "heuristic");
   EXPECT_EQ(stats.at("backend").get<std::string>(), "cpu");
+}
+
+// --heat-map draws every hit in a colour of the ramp (nut/heat_map.hpp) and nothing else: each
+// pixel is the background or the ramp colour of some iteration count up to the cap.
+TEST(RenderCli, HeatMapDrawsOnlyRampColours) {
+  const std::string building = source("samples/hni/building.png");
+  const CliRun r = nut("render " + building + " -o " + out("heat.png") + " --size 64x36 --max-iter 40 --heat-map");
+  ASSERT_EQ(r.exitCode, 0) << r.stderrText;
+  auto png = readPng(out("heat.png"), PngKind::Render);
+  ASSERT_TRUE(png.ok()) << png.error().message;
+  std::set<int> ramp{kBackground[0] << 16 | kBackground[1] << 8 | kBackground[2]};  // as 0xRRGGBB
+  for (int i = 0; i <= 40; ++i) {
+    const auto c = heatColour(i, 40);
+    ramp.insert(c[0] << 16 | c[1] << 8 | c[2]);
+  }
+  int hits = 0;
+  for (int y = 0; y < 36; ++y)
+    for (int x = 0; x < 64; ++x) {
+      const std::uint8_t* p = png->image.at(x, y);
+      const int colour = p[0] << 16 | p[1] << 8 | p[2];
+      EXPECT_TRUE(ramp.count(colour)) << "pixel " << x << "," << y;
+      hits += std::memcmp(p, kBackground.data(), 3) != 0;
+    }
+  EXPECT_GT(hits, 200);
 }
 
 // The text summary and the block list agree with the HNI's own decode.

@@ -3,7 +3,8 @@
 // streamed from its folder until settled, agrees with the CPU on at least 99.5 % of the pixels
 // within 8/255 (docs/VIEWER.md); frustum culling and front-to-back order change no pixel; small
 // atlas pages change no pixel; missing, truncated and foreign files are counted as failures while
-// the rest of the city is drawn. On failure <name>.diff.png is written to tests/gl/output/city.
+// the rest of the city is drawn; the iteration heat-map agrees as the colours do. On failure
+// <name>.diff.png is written to tests/gl/output/city.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -97,10 +98,18 @@ struct Streamed {
   CityFrameStats firstStats;
 };
 
+// What both renderers cast with: the exact lookup, as `nut render` by default.
+RayCastOptions exactLookup() {
+  RayCastOptions cast;
+  cast.lookup = Lookup::Exact;
+  return cast;
+}
+
 // Draws a frame from each camera of the path, then frames of the last one until the city has
 // streamed in from `base` through `fetch`, then `extraFrames` more.
 Streamed stream(const scene::CityManifest& city, const std::string& base, const Fetch& fetch,
-                const std::vector<Camera>& path, const CityRendererOptions& options, int extraFrames = 0) {
+                const std::vector<Camera>& path, const CityRendererOptions& options, int extraFrames = 0,
+                const RayCastOptions& cast = exactLookup()) {
   Streamed out;
   const Camera& camera = path.back();
   auto context = createContext(Backend::OSMesa);
@@ -122,8 +131,6 @@ Streamed stream(const scene::CityManifest& city, const std::string& base, const 
   const Gl& gl = (*context)->gl();
   auto target = RenderTarget::create(gl, camera.width, camera.height);
   CityRenderer renderer(gl, *hni, &*meshes, city, base, fetch, options);
-  RayCastOptions cast;
-  cast.lookup = Lookup::Exact;
   const auto frame = [&](const Camera& view) {
     const auto start = std::chrono::steady_clock::now();
     target->bindCleared();
@@ -159,14 +166,12 @@ Streamed stream(const fs::path& manifest, const Camera& camera, const CityRender
   return stream(manifestAt(manifest), manifest.parent_path().string(), localFiles(), {camera}, options);
 }
 
-Image cpuRender(const fs::path& manifest, const Camera& camera) {
+Image cpuRender(const fs::path& manifest, const Camera& camera, const RayCastOptions& cast = exactLookup()) {
   auto scene = scene::loadScene(manifest.string(), {});
   if (!scene) {
     ADD_FAILURE() << scene.error().message;
     return {};
   }
-  RayCastOptions cast;
-  cast.lookup = Lookup::Exact;
   return scene::SceneRenderer(scene->hnis, nullptr).render(camera, cast).colour;
 }
 
@@ -193,6 +198,21 @@ TEST_F(StreamedCity, AHundredBuildingsMatchTheCpuCity) {
   EXPECT_EQ(gl.stats.loaded, 100u);
   EXPECT_EQ(gl.stats.culledByFrustum, 0u) << "all in view";
   expectAgree("hundred", cpuRender(manifest, camera), gl.image, kMinWithinPct);
+}
+
+// The iteration heat-map of the same view: each pixel shows the iterations of the building seen.
+TEST_F(StreamedCity, HeatMapMatchesTheCpuCity) {
+  writeCity(100);
+  const fs::path manifest = cityDir(100) / "city.json";
+  Camera camera = overview();
+  camera.eye = {-90, 120, -100};
+  camera.target = {110, 0, 90};
+  RayCastOptions cast = exactLookup();
+  cast.heatMap = true;
+  const Streamed gl = stream(manifestAt(manifest), manifest.parent_path().string(), localFiles(), {camera}, {}, 0, cast);
+  const Image cpu = cpuRender(manifest, camera, cast);
+  expectAgree("hundred-heat-map", cpu, gl.image, kMinWithinPct);
+  EXPECT_NE(cpu, cpuRender(manifest, camera)) << "the heat-map is not the shaded image";
 }
 
 TEST_F(StreamedCity, MatchesTheCpuCity) {

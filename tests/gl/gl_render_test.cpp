@@ -2,15 +2,16 @@
 // sample HNI and stress-like scenes (random hierarchies with every feature of the format, a camera
 // inside a building, city-sized world coordinates, centimetre cells in a half-kilometre block,
 // translucent panes, a chain of blocks deeper than the traversal stack, level of detail, exact
-// lookup). Tolerance (docs/GL.md): at least 99.9 % of the pixels within 2/255 and, where both drew
-// a surface, window depths within gltest::kWindowDepthBound of the CPU's (3x3 range). Renders are small (320x180 to
-// 640x360) to keep llvmpipe quick; on failure <name>.actual.png, .expected.png, .diff.png are
-// written to tests/gl/output/render.
+// lookup, the iteration heat-map). Tolerance (docs/GL.md): at least 99.9 % of the pixels within
+// 2/255 and, where both drew a surface, window depths within gltest::kWindowDepthBound of the
+// CPU's (3x3 range). Renders are small (320x180 to 640x360) to keep llvmpipe quick; on failure
+// <name>.actual.png, .expected.png, .diff.png are written to tests/gl/output/render.
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
+#include <set>
 
 #include <glm/geometric.hpp>
 
@@ -115,6 +116,23 @@ TEST(GlMatchesCpu, MeasuredLevelOfDetailFromAfar) {
   RayCastOptions full = s.options;
   full.lodAuto = false;
   EXPECT_NE(renderHni(caster, s.camera, s.options).colour, renderHni(caster, s.camera, full).colour);
+}
+
+TEST(GlMatchesCpu, IterationHeatMap) {
+  Scene s = sampleScene("building", 480, 270);
+  s.name = "building-heat-map";
+  s.options.heatMap = true;
+  expectSameImage(s);
+  // The building's rays take from a few to dozens of iterations: the image spreads over the ramp.
+  const HniRayCaster caster(s.image, s.originM);
+  const RenderOutput heat = renderHni(caster, s.camera, s.options);
+  std::set<int> colours;  // as 0xRRGGBB
+  for (int y = 0; y < heat.colour.height; ++y)
+    for (int x = 0; x < heat.colour.width; ++x) {
+      const std::uint8_t* p = heat.colour.at(x, y);
+      colours.insert(p[0] << 16 | p[1] << 8 | p[2]);
+    }
+  EXPECT_GE(colours.size(), 8u);
 }
 
 TEST(GlMatchesCpu, CameraInsideTheBuilding) {

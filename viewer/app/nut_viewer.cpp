@@ -19,6 +19,7 @@
 #include <viewer/context.hpp>
 #include <viewer/http_fetch.hpp>
 #include <viewer/mesh_renderer.hpp>
+#include <viewer/post_process.hpp>
 #include <viewer/render_target.hpp>
 #include <viewer/shader_library.hpp>
 
@@ -38,7 +39,8 @@ struct ViewerOptions {
   int frames = 0, threads = 2, atlasPage = 4096, hold = 0;  // frames 0: one headless, until closed in a window
   double settleSeconds = 30, budgetMb = 1024, lodPx = 0, summaryPx = 0;
   std::string lod = "off";
-  bool headless = false, noFrustumCulling = false, noOcclusionCulling = false, noFrontToBack = false, noProxies = false;
+  bool headless = false, fxaa = false, heatMap = false, noFrustumCulling = false, noOcclusionCulling = false,
+       noFrontToBack = false, noProxies = false;
   std::optional<bool> ground;  // default: in the window, not headless
 };
 
@@ -94,8 +96,8 @@ nut::WorldBox manifestBounds(const nut::scene::CityManifest& city) {
 int run(const ViewerOptions& o) {
   int width = 0, height = 0;
   char tail = 0;
-  if (std::sscanf(o.size.c_str(), "%dx%d%c", &width, &height, &tail) != 2 || width < 1 || height < 1 ||
-      width > 16384 || height > 16384)
+  if (std::sscanf(o.size.c_str(), "%dx%d%c", &width, &height, &tail) != 2 || width < 1 || height < 1 || width > 16384 ||
+      height > 16384)
     return fail("--size '" + o.size + "': expected WxH, 1 to 16384 each", kUsage);
   // A path or a URL: the manifest through the same fetch as its buildings.
   const nut::viewer::Fetch fetch = nut::viewer::fetchFor(o.city);
@@ -148,8 +150,10 @@ int run(const ViewerOptions& o) {
   cast.lookup = o.lookup == "exact" ? nut::Lookup::Exact : nut::Lookup::Heuristic;
   cast.lodPx = o.lodPx;
   cast.lodAuto = o.lod == "auto";
+  cast.heatMap = o.heatMap;
   if (!o.headless)
-    return nut::viewer::runWindow({*city, base, fetch, options, cast, cameraAt(0.0), o.frames, o.screenshot, o.stats});
+    return nut::viewer::runWindow(
+        {*city, base, fetch, options, cast, cameraAt(0.0), o.frames, o.fxaa, o.screenshot, o.stats});
 
   auto backend = nut::viewer::parseBackend(o.gl);
   if (!backend) return fail(backend.error().message, kUsage);
@@ -161,6 +165,17 @@ int run(const ViewerOptions& o) {
   const nut::viewer::Gl& gl = (*context)->gl();
   auto target = nut::viewer::RenderTarget::create(gl, width, height);
   if (!target) return fail(target.error().message, kInvalid);
+  // --fxaa: the screenshot is the last frame anti-aliased into a second target.
+  std::optional<nut::viewer::Fxaa> fxaa;
+  std::optional<nut::viewer::RenderTarget> smoothed;
+  if (o.fxaa) {
+    auto created = nut::viewer::Fxaa::create(**context, library);
+    if (!created) return fail(created.error().message, kInvalid);
+    fxaa.emplace(std::move(*created));
+    auto second = nut::viewer::RenderTarget::create(gl, width, height);
+    if (!second) return fail(second.error().message, kInvalid);
+    smoothed.emplace(std::move(*second));
+  }
 
   auto meshes = nut::viewer::MeshRenderer::create(**context, library);
   if (!meshes) return fail(meshes.error().message, kInvalid);
@@ -208,8 +223,10 @@ int run(const ViewerOptions& o) {
   }
   for (int f = 0; f < o.hold; ++f)
     if (nut::Status s = drawOne(cameraAt(1.0), "holding"); !s) return fail(s.error().message, kInvalid);
+  if (fxaa) fxaa->apply(*target, *smoothed);
   if (!o.screenshot.empty())
-    if (nut::Status s = nut::writePng(o.screenshot, target->readColour()); !s) return fail(s.error().message, kUsage);
+    if (nut::Status s = nut::writePng(o.screenshot, (fxaa ? *smoothed : *target).readColour()); !s)
+      return fail(s.error().message, kUsage);
   if (!o.stats.empty()) {
     const nlohmann::json j = {{"city", o.city},
                               {"width", width},
@@ -270,6 +287,9 @@ int main(int argc, char** argv) {
   app.add_option("--summary-px", o.summaryPx,
                  "Draw a building whose largest side spans fewer pixels as its summary box (0: never)")
       ->check(CLI::NonNegativeNumber);
+  app.add_flag("--fxaa", o.fxaa, "Anti-alias the frame with FXAA (a toggle in the window)");
+  app.add_flag("--heat-map", o.heatMap,
+               "Draw each surface in the colour of the traversal iterations its ray took (a toggle in the window)");
   app.add_flag("--ground,!--no-ground", o.ground, "A ground plane under the city (default: in the window only)");
   app.add_flag("--no-proxies", o.noProxies, "Draw nothing for buildings not loaded yet (default: a grey box)");
   app.add_flag("--no-frustum-culling", o.noFrustumCulling, "Draw buildings outside the view too");

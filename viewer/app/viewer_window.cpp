@@ -8,10 +8,10 @@
 #include <optional>
 
 #include <GLFW/glfw3.h>
-#include <glm/geometric.hpp>
-#include <imgui.h>
 #include <backends/imgui_impl_glfw.h>
 #include <backends/imgui_impl_opengl3.h>
+#include <imgui.h>
+#include <glm/geometric.hpp>
 #include <nlohmann/json.hpp>
 
 #include <nut/png_io.hpp>
@@ -104,7 +104,7 @@ int runWindow(const WindowRun& run) {
   FlyCamera fly(run.start);
   RayCastOptions cast = run.cast;
   bool frustumCulling = run.options.frustumCulling, occlusionCulling = run.options.occlusionCulling,
-       frontToBack = run.options.frontToBack, antiAlias = false;
+       frontToBack = run.options.frontToBack, antiAlias = run.fxaa, heatMap = cast.heatMap;
   float lodPx = static_cast<float>(cast.lodPx), summaryPx = static_cast<float>(run.options.summaryBelowPx);
   std::optional<RenderTarget> frame, smoothed;
   CityFrameStats stats;
@@ -144,6 +144,7 @@ int runWindow(const WindowRun& run) {
     renderer.setOcclusionCulling(occlusionCulling);
     renderer.setFrontToBack(frontToBack);
     cast.lodPx = lodPx;
+    cast.heatMap = heatMap;
     renderer.setSummaryBelowPx(summaryPx);
     if (Status s = renderer.drawFrame(camera, cast, stats); !s) return fail(s.error().message);
     for (const std::string& failure : stats.newFailures) std::fprintf(stderr, "warning: %s\n", failure.c_str());
@@ -178,6 +179,8 @@ int runWindow(const WindowRun& run) {
     ImGui::Checkbox("front to back", &frontToBack);
     ImGui::SameLine();
     ImGui::Checkbox("FXAA", &antiAlias);
+    ImGui::SameLine();
+    ImGui::Checkbox("heat-map", &heatMap);
     ImGui::Text("W/A/S/D/Q/E move, right mouse turns, wheel: speed %.0f m/s", fly.speedMps);
     const ImVec2 at = ImGui::GetWindowPos(), size = ImGui::GetWindowSize();
     overlay[0] = at.x, overlay[1] = at.y, overlay[2] = size.x, overlay[3] = size.y;
@@ -185,9 +188,12 @@ int runWindow(const WindowRun& run) {
     ImGui::Render();
     ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
 
-    frames.push_back({{"ms", frameMs}, {"drawn", stats.drawn}, {"culled_frustum", stats.culledByFrustum},
+    frames.push_back({{"ms", frameMs},
+                      {"drawn", stats.drawn},
+                      {"culled_frustum", stats.culledByFrustum},
                       {"culled_occlusion", stats.culledByOcclusion},
-                      {"waiting", stats.waiting}, {"loaded", stats.loaded}});
+                      {"waiting", stats.waiting},
+                      {"loaded", stats.loaded}});
     const bool last = run.frames > 0 && f + 1 >= run.frames && renderer.settled();
     if (last && !run.screenshot.empty()) {
       gl.Finish();
@@ -196,8 +202,7 @@ int runWindow(const WindowRun& run) {
       gl.PixelStorei(GL_PACK_ALIGNMENT, 1);
       gl.ReadPixels(0, 0, width, height, GL_RGBA, GL_UNSIGNED_BYTE, shot.pixels.data());
       Image flipped(width, height);  // GL reads bottom row first
-      for (int y = 0; y < height; ++y)
-        std::copy_n(shot.at(0, height - 1 - y), 4 * width, flipped.at(0, y));
+      for (int y = 0; y < height; ++y) std::copy_n(shot.at(0, height - 1 - y), 4 * width, flipped.at(0, y));
       for (int y = 0; y < height; ++y)
         for (int x = 0; x < width; ++x) flipped.at(x, y)[3] = 255;
       if (Status s = writePng(run.screenshot, flipped); !s) return fail(s.error().message);

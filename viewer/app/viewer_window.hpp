@@ -20,6 +20,7 @@ struct WindowRun {
   RayCastOptions cast;
   Camera start;          // the window's size is the camera's
   int frames = 0;        // close after this many frames (0: when the window is closed)
+  bool fxaa = false;     // FXAA on at the start (a toggle in the overlay)
   std::string screenshot;  // the last frame with its overlay, once the view has settled
   std::string stats;       // JSON: frames, and the overlay's rectangle in pixels
 };

@@ -122,6 +122,7 @@ void HniRenderer::draw(const FrameView& view, const HniAtlas& atlas, std::span<c
   gl.Uniform1f(program.uniform("uLodPx"), static_cast<float>(options.lodPx));
   gl.Uniform1i(program.uniform("uLodAuto"), options.lodAuto ? 1 : 0);
   gl.Uniform1i(program.uniform("uMaxIterations"), options.maxIterations);
+  gl.Uniform1i(program.uniform("uHeatMap"), options.heatMap ? 1 : 0);
 
   gl.Enable(GL_DEPTH_TEST);
   gl.DepthFunc(GL_LEQUAL);  // capped rays are drawn at depth 1, the cleared value

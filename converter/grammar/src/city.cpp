@@ -2,12 +2,12 @@
 #include <grammar/city.hpp>
 
 #include <algorithm>
+#include <cmath>
 #include <random>
 
 #include <glm/common.hpp>
 
 #include <nut/units.hpp>
-
 
 namespace nut::grammar {
 
@@ -17,6 +17,8 @@ constexpr double kStreetWidthM = 16.0;
 constexpr double kRowDepthM = 20.0;
 constexpr double kRowLengthM = 240.0;
 constexpr double kLotGapM = 4.0;
+constexpr double kGridLotM = 30.0;
+constexpr int kGridLotsBetweenCrossStreets = 8;
 constexpr int kSizeRedraws = 8;
 
 // The start scope of a building: the grammar's @size scaled per axis.
@@ -26,12 +28,21 @@ glm::dvec3 drawSize(const glm::dvec3& base, std::mt19937_64& random) {
   return {base.x * width, base.y * tall, base.z * depth};
 }
 
+// The centre of a row of lots (world z): row 2k faces the street before its block (-z), row 2k + 1
+// the one after it (+z).
+double rowCentreZ(int row) {
+  const int block = row / 2;
+  return kStreetWidthM + block * (2 * kRowDepthM + kStreetWidthM) + (row % 2 == 1 ? 1.5 : 0.5) * kRowDepthM;
+}
+
 }  // namespace
 
-std::vector<PlannedBuilding> planCity(const std::vector<Grammar>& grammars, std::size_t count, std::uint64_t seed) {
+std::vector<PlannedBuilding> planCity(const std::vector<Grammar>& grammars, std::size_t count, std::uint64_t seed,
+                                      CityLayout layout) {
   std::vector<PlannedBuilding> plan;
   if (grammars.empty()) return plan;
   std::mt19937_64 random(seed);
+  const auto lotsPerGridRow = static_cast<std::size_t>(std::ceil(std::sqrt(static_cast<double>(count))));
   int row = 0;
   double along = 0;
   for (std::size_t i = 0; i < count; ++i) {
@@ -39,18 +50,21 @@ std::vector<PlannedBuilding> planCity(const std::vector<Grammar>& grammars, std:
     b.grammar = i % grammars.size();
     b.seed = random();
     b.sizeM = drawSize(grammars[b.grammar].size.value_or(glm::dvec3(10.0)), random);
-    const double lot = b.sizeM.x + kLotGapM;
-    if (along + lot > kRowLengthM && along > 0) {
-      ++row;
-      along = 0;
+    if (layout == CityLayout::Grid) {
+      const std::size_t column = i % lotsPerGridRow;
+      row = static_cast<int>(i / lotsPerGridRow);
+      const double crossStreets = static_cast<double>(column / kGridLotsBetweenCrossStreets) * kStreetWidthM;
+      b.lotCentreM = {(static_cast<double>(column) + 0.5) * kGridLotM + crossStreets, rowCentreZ(row)};
+    } else {
+      const double lot = b.sizeM.x + kLotGapM;
+      if (along + lot > kRowLengthM && along > 0) {
+        ++row;
+        along = 0;
+      }
+      b.lotCentreM = {along + lot / 2, rowCentreZ(row)};
+      along += lot;
     }
-    // Row 2k faces the street before its block (-z), row 2k + 1 the one after it (+z).
-    const int block = row / 2;
-    const bool back = row % 2 == 1;
-    const double rowCentre = kStreetWidthM + block * (2 * kRowDepthM + kStreetWidthM) + (back ? 1.5 : 0.5) * kRowDepthM;
-    b.lotCentreM = {along + lot / 2, rowCentre};
-    b.yawDeg = back ? 180.0 : 0.0;
-    along += lot;
+    b.yawDeg = row % 2 == 1 ? 180.0 : 0.0;
     plan.push_back(b);
   }
   return plan;

@@ -37,6 +37,9 @@ struct RayCastOptions {
   // Level of detail from measured error (--lod auto): draw a redirection's target as its visual
   // summary where one pixel spans more than the footprint its record carries (version 2 files).
   bool lodAuto = false;
+  // Draw each opaque hit in the colour of the iterations its ray took (nut/heat_map.hpp), unshaded
+  // and untinted; rays that reach no opaque surface are drawn as usual.
+  bool heatMap = false;
 };
 
 // Levels of the traversal stack: deeper redirections are drawn as their visual summary.
@@ -46,9 +49,9 @@ inline constexpr std::array<std::uint8_t, 3> kCappedColour{255, 0, 255};
 
 // What one ray found.
 struct RayResult {
-  bool hit = false;                 // an opaque surface (or LOD summary) was reached
-  double distanceM = 0.0;           // along the ray to that surface
-  glm::dvec3 normal{0.0};           // world unit normal there, facing the ray
+  bool hit = false;                                  // an opaque surface (or LOD summary) was reached
+  double distanceM = 0.0;                            // along the ray to that surface
+  glm::dvec3 normal{0.0};                            // world unit normal there, facing the ray
   std::array<std::uint8_t, 3> colour = kBackground;  // shaded, translucent tints composited
   int iterations = 0;
   bool capped = false;
@@ -95,7 +98,7 @@ class HniRayCaster {
     glm::vec3 offset;    // units
     int target = 0;      // index into blocks_
     std::uint8_t wrap = 0;
-    bool unrotated = true;  // most redirections: the ray needs no transform, only the offset
+    bool unrotated = true;   // most redirections: the ray needs no transform, only the offset
     float lodFootprint = 0;  // units; 0 = none
   };
 
@@ -113,15 +116,15 @@ class HniRayCaster {
   std::vector<int> blockByHeader_;  // 256 * v + u -> index into blocks_, or -1
   std::vector<Redirect> redirects_;
   std::vector<int> redirectByRecord_;  // 256 * v + u -> index into redirects_, or -1
-  std::vector<Material> materials_;     // the material table, decoded once like the headers
+  std::vector<Material> materials_;    // the material table, decoded once like the headers
   int root_ = 0;
   FileRecord file_;
 };
 
 struct RenderOutput {
-  Image colour;                      // RGBA8, alpha 255
-  std::vector<float> distanceM;      // per pixel, +infinity where nothing was hit
-  std::vector<float> windowDepth;    // per pixel in [0, 1], 1 where nothing was hit
+  Image colour;                    // RGBA8, alpha 255
+  std::vector<float> distanceM;    // per pixel, +infinity where nothing was hit
+  std::vector<float> windowDepth;  // per pixel in [0, 1], 1 where nothing was hit
   std::vector<std::uint16_t> iterations;
 };
 
@@ -143,7 +146,7 @@ using RayFunction = std::function<RayResult(const glm::dvec3& originM, const glm
 RenderOutput renderRays(const Camera& camera, const RayFunction& trace, int threads = 0, RenderStats* stats = nullptr);
 
 // renderRays with the caster.
-RenderOutput renderHni(const HniRayCaster& caster, const Camera& camera, const RayCastOptions& options,
-                       int threads = 0, RenderStats* stats = nullptr);
+RenderOutput renderHni(const HniRayCaster& caster, const Camera& camera, const RayCastOptions& options, int threads = 0,
+                       RenderStats* stats = nullptr);
 
 }  // namespace nut

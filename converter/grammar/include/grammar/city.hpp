@@ -27,12 +27,21 @@ struct PlannedBuilding {
   double yawDeg = 0;
 };
 
-// Streets along +x, 16 m wide; each block between two streets holds two rows of lots back to
-// back, 20 m deep, and a row runs up to 240 m before the next row starts. A lot is the building's
-// width plus 4 m. Each grammar's start scope (its @size, which it must have) is scaled per building
-// by 0.8 to 1.25 in width and depth and 0.7 to 1.6 in height; grammars are taken in turn.
-// Deterministic in (grammars' sizes, count, seed).
-std::vector<PlannedBuilding> planCity(const std::vector<Grammar>& grammars, std::size_t count, std::uint64_t seed);
+// Where the lots are. Both layouts have streets along +x, 16 m wide, and between two streets a
+// block of two rows of lots back to back, 20 m deep, each building facing its street.
+enum class CityLayout {
+  // A row runs up to 240 m before the next row starts; a lot is the building's width plus 4 m.
+  Streets,
+  // A square city, as the NUT paper's: ceil(sqrt(count)) lots of 30 m to a row, and a 16 m cross
+  // street after every 8 lots.
+  Grid,
+};
+
+// Each grammar's start scope (its @size, which it must have) is scaled per building by 0.8 to
+// 1.25 in width and depth and 0.7 to 1.6 in height; grammars are taken in turn. Deterministic in
+// (grammars' sizes, count, seed, layout); the layout changes where buildings stand, not what they are.
+std::vector<PlannedBuilding> planCity(const std::vector<Grammar>& grammars, std::size_t count, std::uint64_t seed,
+                                      CityLayout layout = CityLayout::Streets);
 
 // A planned building compiled (with compileGrammar's lod), and where its root block's origin
 // stands in the world. A start scope the grammar cannot fill (parts that do not fit) is redrawn
