@@ -18,6 +18,10 @@ packages=(
   libopenmesh-dev libcgal-dev libgmp-dev libmpfr-dev libmeshoptimizer-dev
   # tests, fuzzing and benchmarks
   libgtest-dev libbenchmark-dev libstb-dev clang-14 libclang-rt-14-dev
+  # plots of the benchmark reports (docs/BENCHMARKS.md)
+  gnuplot-nox
+  # the city manifest checked against its JSON Schema (docs/CITY.md)
+  python3-jsonschema
 )
 
 missing=()

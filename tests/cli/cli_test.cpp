@@ -399,6 +399,42 @@ TEST(CityCli, DistinctValidBuildingsOnLotsThatDoNotOverlap) {
   expectOneErrorLine(nut("city --count 0 --out " + out("city-d")), 2, "--count");
 }
 
+// --layout grid places the same buildings (the same PNG bytes as the streets layout of the seed) on
+// a square of 30 m lots: 25 buildings make 5 rows of 5, each centred on its lot, a row's lots 30 m
+// apart, rows of a block back to back 20 m apart and a 16 m street between blocks. --report counts
+// what was written.
+TEST(CityCli, GridLayoutIsASquareOfLotsAndTheReportCountsTheCity) {
+  const std::string streets = out("city-streets") + "/city", grid = out("city-grid") + "/city";
+  for (const char* dir : {"city-streets", "city-grid"}) fs::remove_all(out(dir));
+  ASSERT_EQ(nut("city --count 25 --out " + streets + " --seed 3 --quiet").exitCode, 0);
+  const CliRun r = nut("city --count 25 --out " + grid + " --seed 3 --quiet --layout grid --report " +
+                       out("city-grid") + "/report.json");
+  ASSERT_EQ(r.exitCode, 0) << r.stderrText;
+  auto manifest = scene::readCityJson(grid + "/city.json");
+  ASSERT_TRUE(manifest) << manifest.error().message;
+  ASSERT_EQ(manifest->buildings.size(), 25u);
+  std::size_t pngBytes = 0;
+  for (std::size_t i = 0; i < 25; ++i) {
+    const scene::CityBuilding& b = manifest->buildings[i];
+    EXPECT_EQ(testing::fileText(grid + "/" + b.hni), testing::fileText(streets + "/" + b.hni)) << b.hni;
+    pngBytes += fs::file_size(grid + "/" + b.hni);
+    ASSERT_TRUE(b.boundsM);
+    const glm::dvec3 centre = 0.5 * (b.boundsM->min + b.boundsM->max);
+    const std::size_t column = i % 5, row = i / 5;
+    EXPECT_NEAR(centre.x, 15.0 + 30.0 * static_cast<double>(column), 1e-6) << b.name;
+    const double rowZ = 16.0 + static_cast<double>(row / 2) * 56.0 + (row % 2 == 1 ? 30.0 : 10.0);
+    EXPECT_NEAR(centre.z, rowZ, 1e-6) << b.name;
+    EXPECT_EQ(b.yawDeg, row % 2 == 1 ? 180.0 : 0.0) << b.name;
+  }
+  const nlohmann::json report = nlohmann::json::parse(testing::fileText(out("city-grid") + "/report.json"));
+  EXPECT_EQ(report.at("buildings").get<std::size_t>(), 25u);
+  EXPECT_EQ(report.at("png_bytes").get<std::size_t>(), pngBytes);
+  EXPECT_EQ(report.at("layout").get<std::string>(), "grid");
+  EXPECT_GT(report.at("buildings_per_second").get<double>(), 0.0);
+  // Boxes of at least 4 x 6 x 4 m: twelve triangles a building at the very least.
+  EXPECT_GE(report.at("grammar_mesh").at("triangles").get<std::size_t>(), 25u * 12u);
+}
+
 // A misspelt command is named, with the commands there are, on one line.
 TEST(MainCli, AnUnknownCommandIsNamedWithTheCommandsThereAre) {
   const CliRun r = nut("rendr samples/hni/building.png -o x.png");

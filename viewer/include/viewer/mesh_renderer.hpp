@@ -32,6 +32,10 @@ class GpuMesh {
 
   const WorldBox& bounds() const { return bounds_; }
   std::size_t triangleCount() const { return opaqueVertices_ / 3 + translucent_.size() / 3; }
+  // The vertex data it holds: unindexed, 28 bytes a vertex (position, normal, material).
+  std::size_t bufferBytes() const {
+    return (static_cast<std::size_t>(opaqueVertices_) + translucent_.size()) * sizeof(Vertex);
+  }
 
  private:
   friend class MeshRenderer;
