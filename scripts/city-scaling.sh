@@ -1,9 +1,10 @@
 #!/usr/bin/env bash
 # City scaling (docs/BENCHMARKS.md, "City scaling"): cities of the NUT paper's sizes generated with
 # `nut city --layout grid`, each drawn from the same street and overview cameras by the streaming
-# NUT renderer and, in the same GL context, by rasterising the exported meshes of the same
-# buildings (build/bench/city_scaling_bench); generation speed, memory and frame time per city, a
-# Markdown table on stdout and a plot (PNG, gnuplot).
+# NUT renderer (full detail, and with far buildings and cells as their summaries) and, in the same
+# GL context, by rasterising the exported meshes of the same buildings
+# (build/bench/city_scaling_bench); generation speed, memory and frame time per city, a Markdown
+# table on stdout and a plot (PNG, gnuplot).
 #   scripts/city-scaling.sh [BUILD] [OUT] [PLOT]
 #   (defaults: build, out/city-scaling, OUT/city-scaling.png; SIZES="225 900 2116 8464",
 #    GL_BACKEND=osmesa, HOLD=5 timed frames a view, MESH_BUDGET_MB=12288 of mesh vertex buffers)
@@ -34,7 +35,8 @@ print(f"Cities of `nut city --layout grid --seed 1`, {rows[0][2]['width']}x{rows
 print("| buildings | generation (buildings/s) | NUT PNG | NUT texels | grammar meshes, indexed | exported meshes, indexed | exported meshes as drawn | memory ratio |")
 print("|---|---|---|---|---|---|---|---|")
 data = open(f"{out}/scaling.dat", "w")
-data.write("# buildings png texels grammar_indexed exported_indexed buffers nut_street nut_above mesh_street mesh_above\n")
+data.write("# buildings png texels grammar_indexed exported_indexed buffers nut_street nut_above mesh_street mesh_above "
+           "nut_lod_street nut_lod_above\n")
 for n, report, result in rows:
     nut, mesh = result["nut"], result["mesh"]
     grammar_indexed = report["grammar_mesh"]["vertices"] * 12 + report["grammar_mesh"]["triangles"] * 12
@@ -45,24 +47,28 @@ for n, report, result in rows:
           f"| {mib(grammar_indexed):,.0f} MiB | {mib(mesh['indexed_bytes']):,.0f} MiB | {drawn} | {ratio:.0f}x |")
     views = lambda key: [result[key]["views"][v]["median_ms"] if key in result and "views" in result[key] else float("nan")
                          for v in ("street", "above")]
+    lod = [nut["lod_views"][v]["median_ms"] for v in ("street", "above")]
     data.write(" ".join(str(x) for x in [n, nut["png_bytes"], nut["texel_bytes"], grammar_indexed, mesh["indexed_bytes"],
-                                          buffers or "nan", *views("nut"), *views("mesh")]) + "\n")
+                                          buffers or "nan", *views("nut"), *views("mesh"), *lod]) + "\n")
 data.close()
 print()
-print("| buildings | view | NUT frame (ms, median) | drawn | culled by frustum | culled by occlusion | mesh frame (ms, median) | drawn |")
-print("|---|---|---|---|---|---|---|---|")
+print("| buildings | view | NUT frame (ms, median, min-max) | drawn | culled by frustum | culled by occlusion "
+      "| NUT with LOD (ms) | as summaries | pixels off | mesh frame (ms) | meshes drawn |")
+print("|---|---|---|---|---|---|---|---|---|---|---|")
 for n, report, result in rows:
     for v in ("street", "above"):
-        nv = result["nut"]["views"][v]
+        nv, lv = result["nut"]["views"][v], result["nut"]["lod_views"][v]
         mv = result["mesh"].get("views", {}).get(v)
         mesh_cols = f"{mv['median_ms']:.0f} | {mv['drawn']}" if mv else "over the budget | "
         print(f"| {n:,} | {v} | {nv['median_ms']:.0f} ({nv['min_ms']:.0f}-{nv['max_ms']:.0f}) | {nv['drawn']} "
-              f"| {nv['culled_frustum']} | {nv['culled_occlusion']} | {mesh_cols} |")
+              f"| {nv['culled_frustum']} | {nv['culled_occlusion']} | {lv['median_ms']:.0f} | {lv['as_summary']} "
+              f"| {lv['pixels_off_pct']:.2f} % | {mesh_cols} |")
 first, last = rows[0], rows[-1]
 print()
 for v in ("street", "above"):
     growth = last[2]["nut"]["views"][v]["median_ms"] / first[2]["nut"]["views"][v]["median_ms"]
-    line = f"{v}: NUT frame time grows {growth:.2f}x from {first[0]:,} to {last[0]:,} buildings"
+    lod = last[2]["nut"]["lod_views"][v]["median_ms"] / first[2]["nut"]["lod_views"][v]["median_ms"]
+    line = f"{v}: NUT frame time grows {growth:.2f}x from {first[0]:,} to {last[0]:,} buildings ({lod:.2f}x with LOD)"
     if "views" in last[2]["mesh"] and "views" in first[2]["mesh"]:
         line += f"; the meshes' {last[2]['mesh']['views'][v]['median_ms'] / first[2]['mesh']['views'][v]['median_ms']:.2f}x"
     print(line)
@@ -79,6 +85,8 @@ set title "Frame time, 1280x720 (${GL_BACKEND:-osmesa})"
 set ylabel "ms"
 plot "$out/scaling.dat" using 1:7 with linespoints title "NUT, street", \
      "" using 1:8 with linespoints title "NUT, above", \
+     "" using 1:11 with linespoints title "NUT with LOD, street", \
+     "" using 1:12 with linespoints title "NUT with LOD, above", \
      "" using 1:9 with linespoints title "mesh, street", \
      "" using 1:10 with linespoints title "mesh, above"
 set logscale y

@@ -292,8 +292,8 @@ Status CityRenderer::drawFrame(const Camera& camera, const RayCastOptions& optio
   if (occlusion) collectOcclusion();
   const std::vector<Visible> visible = prepare(view, stats);
 
-  // Boxes first, so that the ray casting behind them is rejected early: the ground, the proxies
-  // of what is still streaming in, and the far buildings as their summaries.
+  // Boxes first, which the depth test then keeps in front of what is ray-cast behind them: the
+  // ground, the proxies of what is still streaming in, and the far buildings as their summaries.
   TriangleMesh boxes;
   std::vector<bool> summarised(buildings_.size(), false);
   if (meshRenderer_) {
