@@ -7,9 +7,11 @@
 #               (targets: hni_fuzz, the default, obj_fuzz, city_fuzz, render_fuzz, grammar_fuzz; docs/INPUT.md)
 #   make core-check   build the core alone (optional modules off) and check what it links
 #   make test-sanitize   build the whole suite with AddressSanitizer + UBSan and run it
+#   make test-thread     build the tests of the parallel code with ThreadSanitizer and run them
 BUILD ?= build
 CORE_BUILD ?= build-core
 SANITIZE_BUILD ?= build-asan
+THREAD_BUILD ?= build-tsan
 FUZZ_BUILD ?= build-fuzz
 JOBS ?= $(shell nproc)
 FUZZ_SECONDS ?= 600
@@ -33,7 +35,7 @@ fuzz-smoke-run = echo "fuzz: $(1) for $(2) s" >&2; $(call fuzz-run,$(1),$(2)) 2>
 fuzz-smoke-seconds = $(if $(filter hni_fuzz,$(1)),$(FUZZ_SMOKE_SECONDS),$(FUZZ_SMOKE_OTHER_SECONDS))
 OUT ?= out
 
-.PHONY: deps build test demo bench fuzz fuzz-build fuzz-smoke core-check test-sanitize clean
+.PHONY: deps build test demo bench fuzz fuzz-build fuzz-smoke core-check test-sanitize test-thread clean
 
 deps:
 	@./scripts/install-deps.sh
@@ -59,6 +61,18 @@ test-sanitize: deps
 	@UBSAN_OPTIONS=print_stacktrace=1 LSAN_OPTIONS=suppressions=$(CURDIR)/tests/lsan.supp \
 	  ctest --test-dir $(SANITIZE_BUILD) --output-on-failure -j $(JOBS)
 
+# The code that runs threads (docs/INPUT.md, "Sanitizers"): the pixel loop of both CPU renderers,
+# `nut city` and `nut convert` building side by side, the PNG encoder's workers and the viewer's
+# loader threads, through the tests that run them with two threads or more.
+THREAD_TESTS = cli_test converter_cli_test png_io_test city_viewer_test
+THREAD_TEST_NAMES = CityCli|RenderCli|ConvertCli|PngIo|StreamedCity
+test-thread: deps
+	@cmake -S . -B $(THREAD_BUILD) -DCMAKE_BUILD_TYPE=RelWithDebInfo -DNUT_BUILD_BENCH=OFF \
+	  -DCMAKE_CXX_FLAGS="-fsanitize=thread" -DCMAKE_EXE_LINKER_FLAGS="-fsanitize=thread" > /dev/null
+	@cmake --build $(THREAD_BUILD) -j $(JOBS) --target $(THREAD_TESTS) nut_cli nut_viewer_app
+	@TSAN_OPTIONS="halt_on_error=1 suppressions=$(CURDIR)/tests/tsan.supp" \
+	  ctest --test-dir $(THREAD_BUILD) --output-on-failure -j $(JOBS) -R '^($(THREAD_TEST_NAMES))\.'
+
 demo: build
 	@./scripts/demo.sh $(BUILD) $(OUT)
 
@@ -81,4 +95,4 @@ fuzz: fuzz-build
 	@$(call fuzz-run,$(TARGET),$(FUZZ_SECONDS))
 
 clean:
-	rm -rf $(BUILD) $(CORE_BUILD) $(SANITIZE_BUILD) $(FUZZ_BUILD) $(OUT)
+	rm -rf $(BUILD) $(CORE_BUILD) $(SANITIZE_BUILD) $(THREAD_BUILD) $(FUZZ_BUILD) $(OUT)

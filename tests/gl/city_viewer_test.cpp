@@ -187,13 +187,18 @@ struct StreamedCity : ::testing::Test {
   void SetUp() override { writeCity(); }
 };
 
-// The city of a hundred buildings, all in view.
-TEST_F(StreamedCity, AHundredBuildingsMatchTheCpuCity) {
-  writeCity(100);
-  const fs::path manifest = cityDir(100) / "city.json";
+// The city of a hundred buildings, all in view from here.
+Camera hundredBuildingsView() {
   Camera camera = overview();
   camera.eye = {-90, 120, -100};
   camera.target = {110, 0, 90};
+  return camera;
+}
+
+TEST_F(StreamedCity, AHundredBuildingsMatchTheCpuCity) {
+  writeCity(100);
+  const fs::path manifest = cityDir(100) / "city.json";
+  const Camera camera = hundredBuildingsView();
   const Streamed gl = stream(manifest, camera, {});
   EXPECT_EQ(gl.stats.loaded, 100u);
   EXPECT_EQ(gl.stats.culledByFrustum, 0u) << "all in view";
@@ -204,9 +209,7 @@ TEST_F(StreamedCity, AHundredBuildingsMatchTheCpuCity) {
 TEST_F(StreamedCity, HeatMapMatchesTheCpuCity) {
   writeCity(100);
   const fs::path manifest = cityDir(100) / "city.json";
-  Camera camera = overview();
-  camera.eye = {-90, 120, -100};
-  camera.target = {110, 0, 90};
+  const Camera camera = hundredBuildingsView();
   RayCastOptions cast = exactLookup();
   cast.heatMap = true;
   const Streamed gl = stream(manifestAt(manifest), manifest.parent_path().string(), localFiles(), {camera}, {}, 0, cast);
