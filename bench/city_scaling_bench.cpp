@@ -3,21 +3,21 @@
 // streaming NUT renderer (viewer/city_renderer.hpp) and, in the same GL context, by rasterising
 // the exported meshes of the same buildings, with the memory each needs.
 //
-// NUT: each view streams in what it sees, then `--hold` frames are timed; memory is
-// the PNG bytes on disk, the texels of every HNI (what an atlas holding the whole city stores) and
-// the atlas pages the run allocated. Mesh: every building's HNI exported as triangles
-// (nut::exportMesh, placed and turned as the manifest says, on all cores) and uploaded as the
-// renderer's vertex buffers; each view draws the buildings whose box meets the frustum (the same test as the
-// NUT renderer), `--hold` frames timed after one untimed. A mesh city that would pass
-// `--mesh-budget-mb` of vertex buffers is not uploaded, and the result says so. Frames end with
-// glFinish. Not a Google Benchmark: each run is one city, and the script compares the cities.
+// NUT: each view streams in what it sees, then `--hold` frames are timed, at full detail and with
+// level of detail (whose frame is compared with full detail's); memory is the PNG bytes on disk,
+// the texels of every HNI (what an atlas holding the whole city stores) and the atlas pages the
+// run allocated. Mesh: every building's HNI exported as triangles (nut::exportMesh, placed and
+// turned as the manifest says, on all cores) and uploaded as the renderer's vertex buffers; each
+// view draws the buildings whose box meets the frustum (the same test as the NUT renderer),
+// `--hold` frames timed after one untimed. A mesh city that would pass `--mesh-budget-mb` of
+// vertex buffers is not drawn, and the result says so. Frames end with glFinish. Not a Google
+// Benchmark: each run is one city, and the script compares the cities.
 #include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
-#include <mutex>
-#include <optional>
 #include <string>
 #include <thread>
 #include <vector>
