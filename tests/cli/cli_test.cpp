@@ -233,14 +233,16 @@ TEST(RenderCli, DepthIsAPfmOfTheImageAndStatsSayWhatRan) {
 }
 
 // --heat-map draws every hit in a colour of the ramp (nut/heat_map.hpp) and nothing else: each
-// pixel is the background or the ramp colour of some iteration count up to the cap.
+// pixel is the background, the ramp colour of some iteration count up to the cap, or the capped
+// colour.
 TEST(RenderCli, HeatMapDrawsOnlyRampColours) {
   const std::string building = source("samples/hni/building.png");
   const CliRun r = nut("render " + building + " -o " + out("heat.png") + " --size 64x36 --max-iter 40 --heat-map");
   ASSERT_EQ(r.exitCode, 0) << r.stderrText;
   auto png = readPng(out("heat.png"), PngKind::Render);
   ASSERT_TRUE(png.ok()) << png.error().message;
-  std::set<int> ramp{kBackground[0] << 16 | kBackground[1] << 8 | kBackground[2]};  // as 0xRRGGBB
+  std::set<int> ramp{kBackground[0] << 16 | kBackground[1] << 8 | kBackground[2],  // as 0xRRGGBB
+                     kCappedColour[0] << 16 | kCappedColour[1] << 8 | kCappedColour[2]};
   for (int i = 0; i <= 40; ++i) {
     const auto c = heatColour(i, 40);
     ramp.insert(c[0] << 16 | c[1] << 8 | c[2]);
