@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# Installs every system dependency of nut from Debian 12 packages.
+# Installs every system dependency of nut from Debian 12 packages, and the npm packages of the
+# browser tests into .tools/.
 # Idempotent: when everything is already installed it prints nothing and exits 0.
 set -euo pipefail
 
@@ -22,17 +23,34 @@ packages=(
   gnuplot-nox
   # the city manifest checked against its JSON Schema (docs/CITY.md)
   python3-jsonschema
+  # the browser viewer's tests (docs/WEB.md): headless Chromium, driven from Node.js
+  chromium nodejs npm
 )
+
+# npm packages, pinned, into .tools/ (ignored by git): puppeteer-core drives the system Chromium.
+# Version 24 is the last that runs on Node.js 20.
+npm_packages=(puppeteer-core@24.43.1)
+root="$(cd "$(dirname "$0")/.." && pwd)"
 
 missing=()
 for p in "${packages[@]}"; do
+  # Node.js may come from elsewhere than Debian (a newer one); any node and npm will do.
+  if [ "$p" = nodejs ] || [ "$p" = npm ]; then command -v "${p/nodejs/node}" >/dev/null && continue; fi
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
 done
-[ ${#missing[@]} -eq 0 ] && exit 0
+if [ ${#missing[@]} -ne 0 ]; then
+  echo "install-deps: installing ${missing[*]}" >&2
+  sudo_cmd=()
+  [ "$(id -u)" -ne 0 ] && sudo_cmd=(sudo)
+  export DEBIAN_FRONTEND=noninteractive
+  "${sudo_cmd[@]}" apt-get update -qq
+  "${sudo_cmd[@]}" apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
+fi
 
-echo "install-deps: installing ${missing[*]}" >&2
-sudo_cmd=()
-[ "$(id -u)" -ne 0 ] && sudo_cmd=(sudo)
-export DEBIAN_FRONTEND=noninteractive
-"${sudo_cmd[@]}" apt-get update -qq
-"${sudo_cmd[@]}" apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
+for p in "${npm_packages[@]}"; do
+  name="${p%@*}" version="${p##*@}"
+  installed="$(node -p "require('$root/.tools/node_modules/$name/package.json').version" 2>/dev/null || true)"
+  [ "$installed" = "$version" ] && continue
+  echo "install-deps: installing $p into .tools/ (npm)" >&2
+  npm install --silent --no-audit --no-fund --prefix "$root/.tools" "$p" >/dev/null
+done

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <filesystem>
 #include <memory>
 #include <optional>
 #include <string>
@@ -22,6 +23,7 @@
 #include <viewer/post_process.hpp>
 #include <viewer/render_target.hpp>
 #include <viewer/shader_library.hpp>
+#include <viewer/web_export.hpp>
 
 #include "viewer_window.hpp"
 
@@ -35,7 +37,7 @@ int fail(const std::string& message, int code) {
 }
 
 struct ViewerOptions {
-  std::string city, size = "1280x720", cameraPath, screenshot, stats, gl = "osmesa", lookup = "exact";
+  std::string city, size = "1280x720", cameraPath, screenshot, stats, gl = "osmesa", lookup = "exact", exportWeb;
   int frames = 0, threads = 2, atlasPage = 4096, hold = 0;  // frames 0: one headless, until closed in a window
   double settleSeconds = 30, budgetMb = 1024, lodPx = 0, summaryPx = 0;
   std::string lod = "off";
@@ -93,7 +95,21 @@ nut::WorldBox manifestBounds(const nut::scene::CityManifest& city) {
   return box;
 }
 
+// --export-web DIR: the browser viewer written beside a city (docs/WEB.md).
+int exportWebPage(const std::string& dir) {
+  auto written = nut::viewer::exportWeb(dir, nut::viewer::ShaderLibrary::fromEnvironment());
+  if (!written) return fail(written.error().message, kUsage);
+  std::fprintf(stderr, "nut-viewer: wrote the browser viewer (%d files) to %s\n", *written, dir.c_str());
+  if (!std::filesystem::exists(std::filesystem::path(dir) / "city.json"))
+    std::fprintf(stderr, "nut-viewer: %s has no city.json: open index.html?city=URL, or put a city there\n", dir.c_str());
+  std::fprintf(stderr, "serve it with:  cd %s && python3 -m http.server 8000   then open http://localhost:8000/\n",
+               dir.c_str());
+  return kOk;
+}
+
 int run(const ViewerOptions& o) {
+  if (!o.exportWeb.empty()) return exportWebPage(o.exportWeb);
+  if (o.city.empty()) return fail("a city manifest is required (or --export-web DIR; see nut-viewer --help)", kUsage);
   int width = 0, height = 0;
   char tail = 0;
   if (std::sscanf(o.size.c_str(), "%dx%d%c", &width, &height, &tail) != 2 || width < 1 || height < 1 || width > 16384 ||
@@ -250,8 +266,10 @@ int run(const ViewerOptions& o) {
 int main(int argc, char** argv) {
   CLI::App app{"nut-viewer: stream a PNG city (city.json) into the GL ray caster"};
   ViewerOptions o;
-  app.add_option("city", o.city, "City manifest: a path, or an http(s):// URL (its buildings are fetched beside it)")
-      ->required();
+  app.add_option("city", o.city, "City manifest: a path, or an http(s):// URL (its buildings are fetched beside it)");
+  app.add_option("--export-web", o.exportWeb,
+                 "Write the browser viewer (an HTML page and its modules, docs/WEB.md) into this folder, usually "
+                 "the city's, and exit");
   app.add_flag("--headless", o.headless, "Render offscreen (OSMesa or EGL) instead of in a window");
   app.add_option("--size", o.size, "Frame size WxH")->capture_default_str();
   app.add_option("--camera-path", o.cameraPath, "Camera path JSON (docs/VIEWER.md); default: the city fitted");
@@ -297,7 +315,8 @@ int main(int argc, char** argv) {
   app.add_flag("--no-front-to-back", o.noFrontToBack, "Draw in manifest order instead of nearest first");
   app.footer(
       "Examples:\n  nut city --count 100 --out city100 && nut-viewer city100/city.json\n"
-      "  nut-viewer city100/city.json --headless --size 1280x720 --screenshot shot.png --stats stats.json\n\n"
+      "  nut-viewer city100/city.json --headless --size 1280x720 --screenshot shot.png --stats stats.json\n"
+      "  nut-viewer --export-web city100 && cd city100 && python3 -m http.server 8000   # a browser at :8000\n\n"
       "Exit status: 0 success, 1 invalid input, 2 usage error or a file that cannot be read or written.");
   try {
     app.parse(argc, argv);

@@ -49,19 +49,22 @@ Status HniAtlas::put(const Image& hni, glm::ivec2 at) {
   return Ok{};
 }
 
+ProgramSpec hniRayCasterSpec(Lookup lookup) {
+  const bool exact = lookup == Lookup::Exact;
+  return {exact ? "HNI ray caster (exact lookup)" : "HNI ray caster",
+          {"hni_access.glsl", "hni_proxy.vert"},
+          {"hni_access.glsl", "solids.glsl", "hni_raycast.frag"},
+          {exact ? "NUT_EXACT_LOOKUP 1" : "NUT_EXACT_LOOKUP 0"}};
+}
+
 Result<HniRenderer> HniRenderer::create(const Context& context, const ShaderLibrary& library, int glslVersion) {
   const Gl& gl = context.gl();
-  const auto build = [&](bool exact) {
-    return Program::build(gl, library,
-                          {exact ? "HNI ray caster (exact lookup)" : "HNI ray caster",
-                           {"hni_access.glsl", "hni_proxy.vert"},
-                           {"hni_access.glsl", "solids.glsl", "hni_raycast.frag"},
-                           {exact ? "NUT_EXACT_LOOKUP 1" : "NUT_EXACT_LOOKUP 0"}},
-                          glslVersion ? glslVersion : context.glslVersion());
+  const auto build = [&](Lookup lookup) {
+    return Program::build(gl, library, hniRayCasterSpec(lookup), glslVersion ? glslVersion : context.glslVersion());
   };
-  auto heuristic = build(false);
+  auto heuristic = build(Lookup::Heuristic);
   if (!heuristic) return heuristic.error();
-  auto exact = build(true);
+  auto exact = build(Lookup::Exact);
   if (!exact) return exact.error();
   HniRenderer r(gl, std::move(*heuristic), std::move(*exact));
   r.vertexArray_ = makeVertexArray(gl);

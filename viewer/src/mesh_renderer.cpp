@@ -81,8 +81,10 @@ Result<GpuMesh> GpuMesh::upload(const Gl& gl, const TriangleMesh& mesh) {
   return out;
 }
 
+ProgramSpec meshProgramSpec() { return {"mesh", {"mesh.vert"}, {"mesh.frag"}, {}}; }
+
 Result<MeshRenderer> MeshRenderer::create(const Context& context, const ShaderLibrary& library, int glslVersion) {
-  auto program = Program::build(context.gl(), library, {"mesh", {"mesh.vert"}, {"mesh.frag"}},
+  auto program = Program::build(context.gl(), library, meshProgramSpec(),
                                 glslVersion ? glslVersion : context.glslVersion());
   if (!program) return program.error();
   return MeshRenderer(context.gl(), std::move(*program));

@@ -33,31 +33,6 @@ std::string infoLog(const Gl& gl, GLuint object, bool isProgram) {
   return log;
 }
 
-// One stage's source text and where each file begins in it.
-struct StageSource {
-  std::string text;
-  std::vector<std::pair<int, std::string>> fileAtLine;  // first line (1-based) of each file, in order
-};
-
-Result<StageSource> assemble(const ShaderLibrary& library, const std::vector<std::string>& files,
-                             const std::vector<std::string>& defines, int glslVersion) {
-  std::vector<std::string> parts{kGeneratedConstants, kCommon};
-  parts.insert(parts.end(), files.begin(), files.end());
-  StageSource out;
-  out.text = "#version " + std::to_string(glslVersion) + " core\n";
-  for (const std::string& define : defines) out.text += "#define " + define + "\n";
-  int line = 2 + static_cast<int>(defines.size());
-  for (const std::string& part : parts) {
-    auto text = library.source(part);
-    if (!text) return text.error();
-    out.fileAtLine.emplace_back(line, part);
-    out.text += *text;
-    if (out.text.back() != '\n') out.text += '\n';
-    line += static_cast<int>(std::count(text->begin(), text->end(), '\n')) + (text->empty() || text->back() != '\n');
-  }
-  return out;
-}
-
 // Rewrites the line numbers of an info log ("0:123(4): error" from Mesa, "0(123) : error" from
 // NVIDIA) as file and line: "hni_raycast.frag:17(4): error". Drivers number the lines of the one
 // assembled string; #line with a source-string number would be the standard way to name files, but
@@ -85,6 +60,27 @@ std::string annotate(const std::string& log, const StageSource& source) {
 
 }  // namespace
 
+Result<StageSource> assembleStage(const ShaderLibrary& library, const std::vector<std::string>& files,
+                                  const std::vector<std::string>& defines, int glslVersion, GlslDialect dialect) {
+  std::vector<std::string> parts{kGeneratedConstants, kCommon};
+  parts.insert(parts.end(), files.begin(), files.end());
+  StageSource out;
+  out.text = dialect == GlslDialect::Es300
+                 ? "#version 300 es\nprecision highp float;\nprecision highp int;\nprecision highp usampler2D;\n"
+                 : "#version " + std::to_string(glslVersion) + " core\n";
+  for (const std::string& define : defines) out.text += "#define " + define + "\n";
+  int line = 1 + static_cast<int>(std::count(out.text.begin(), out.text.end(), '\n'));
+  for (const std::string& part : parts) {
+    auto text = library.source(part);
+    if (!text) return text.error();
+    out.fileAtLine.emplace_back(line, part);
+    out.text += *text;
+    if (out.text.back() != '\n') out.text += '\n';
+    line += static_cast<int>(std::count(text->begin(), text->end(), '\n')) + (text->empty() || text->back() != '\n');
+  }
+  return out;
+}
+
 ShaderLibrary ShaderLibrary::fromEnvironment() {
   const char* directory = std::getenv("NUT_SHADER_DIR");
   return ShaderLibrary(directory ? directory : "");
@@ -107,7 +103,7 @@ Result<Program> Program::build(const Gl& gl, const ShaderLibrary& library, const
   std::vector<GlObject> shaders;
   for (const auto& [stage, files, name] : {std::tuple{GL_VERTEX_SHADER, &spec.vertexFiles, "vertex"},
                                            std::tuple{GL_FRAGMENT_SHADER, &spec.fragmentFiles, "fragment"}}) {
-    auto source = assemble(library, *files, spec.defines, glslVersion);
+    auto source = assembleStage(library, *files, spec.defines, glslVersion);
     if (!source) return Error{spec.role + ": " + source.error().message};
     GlObject shader(gl, gl.CreateShader(static_cast<GLenum>(stage)), [](const Gl& g, GLuint n) { g.DeleteShader(n); });
     const char* text = source->text.c_str();

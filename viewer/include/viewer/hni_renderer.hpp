@@ -54,6 +54,10 @@ struct HniInstance {
   glm::dmat3 worldFromRoot{1.0};   // rotation of the root block's axes (as for nut::HniRayCaster)
 };
 
+// The ray caster's program, one per lookup mode: the files and the NUT_EXACT_LOOKUP define that
+// HniRenderer builds, and the browser viewer's export assembles as GLSL ES (docs/WEB.md).
+ProgramSpec hniRayCasterSpec(Lookup lookup);
+
 class HniRenderer {
  public:
   // Builds the program under the context's GLSL version, or `glslVersion` when non-zero.

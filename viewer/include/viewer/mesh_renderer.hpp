@@ -55,6 +55,10 @@ class GpuMesh {
   GlObject translucentArray_, translucentBuffer_;
 };
 
+// The mesh program: the files MeshRenderer builds, and the browser viewer's export assembles as
+// GLSL ES for its boxes (docs/WEB.md).
+ProgramSpec meshProgramSpec();
+
 class MeshRenderer {
  public:
   static Result<MeshRenderer> create(const Context& context, const ShaderLibrary& library, int glslVersion = 0);

@@ -1,13 +1,14 @@
 // viewer/shader_library.hpp — GLSL programs assembled from the files of shaders/.
 //
-// A program stage is "#version N core", then format_constants.glsl (generated from the C++
-// constants), common.glsl and the stage's own files; compile errors are reported with the file and
-// line they refer to. The sources are the ones embedded at build time, or, for development, the
+// A program stage is "#version N core" (or, for WebGL2, "#version 300 es" and its precision
+// statements), then format_constants.glsl (generated from the C++ constants), common.glsl and the
+// stage's own files; compile errors are reported with the file and line they refer to. The sources are the ones embedded at build time, or, for development, the
 // files of a directory (NUT_SHADER_DIR or `--shader-dir`): edit a shader and rerun, no rebuild.
 #pragma once
 
 #include <string>
 #include <unordered_map>
+#include <utility>
 #include <vector>
 
 #include <nut/error.hpp>
@@ -46,6 +47,24 @@ struct ProgramSpec {
   std::vector<std::string> fragmentFiles;
   std::vector<std::string> defines;
 };
+
+// The GLSL a stage is assembled for: desktop "#version N core", or GLSL ES 3.00 for WebGL2 (the
+// browser viewer, docs/WEB.md), whose prelude also sets high precision for floats, integers and
+// the unsigned-integer sampler the HNI atlas is read through.
+enum class GlslDialect { Core, Es300 };
+
+// One stage's source text, as Program::build compiles it, and the first line (1-based) of each
+// file in it, so that a compiler's line numbers can be turned into file and line.
+struct StageSource {
+  std::string text;
+  std::vector<std::pair<int, std::string>> fileAtLine;
+};
+
+// Assembles a stage: the version line (glslVersion is ignored for Es300), the defines, the common
+// prelude and `files`. Errors name the file that could not be read.
+Result<StageSource> assembleStage(const ShaderLibrary& library, const std::vector<std::string>& files,
+                                  const std::vector<std::string>& defines, int glslVersion,
+                                  GlslDialect dialect = GlslDialect::Core);
 
 class Program {
  public:

@@ -1,0 +1,380 @@
+// city_renderer.js — a city manifest streamed and drawn frame by frame in WebGL2, with the desktop
+// viewer's policy (viewer/city_renderer.hpp): the buildings the camera can see are fetched nearest
+// first, a bounded number at a time; decoded HNIs are uploaded into atlas pages in bounded slices
+// per frame; when the pages (the memory budget) are full, the page seen least recently is emptied;
+// buildings are frustum-culled, drawn front to back, one instanced draw per page; a building not
+// loaded yet is drawn as its grey box, a far one as its summary box, and a file that fails to
+// load or decode is reported and drawn as missing. The frame never waits for a file.
+//
+// Not here (docs/WEB.md): occlusion culling, and complementary meshes (OBJ), which are not fetched.
+
+import { AtlasPages } from './atlas.js';
+import { manifestBounds, placedBox, yawRotation } from './city.js';
+import { FrameView, length, sub } from './camera.js';
+import { buildProgram } from './gl_programs.js';
+import { decodePng, readHniRoot } from './hni_png.js';
+
+const PROXY_GREY = [175, 175, 175];
+const GROUND = [196, 198, 190];
+
+export const DEFAULT_OPTIONS = {
+  frustumCulling: true,
+  frontToBack: true,
+  proxies: true,
+  summaryBelowPx: 0, // a loaded building whose largest side spans fewer pixels: its summary box
+  ground: true,
+  maxOutstanding: 16, // fetches in flight at once
+  uploadBytesPerFrame: 4 << 20, // at least one HNI a frame is uploaded
+  atlasPageSize: 4096,
+  maxAtlasPages: 4, // the memory budget: 4 pages of 4096^2 RGBA8 = 256 MiB
+};
+
+// Ray-casting options, as nut::RayCastOptions.
+export const DEFAULT_CAST = { exactLookup: true, lodPx: 0, lodAuto: false, maxIterations: 512, heatMap: false };
+
+// The six faces of a box (corner bits x = c & 1, y = c & 2, z = c & 4), counter-clockwise seen
+// from outside, with their normals: +x, -x, +y, -y, +z, -z.
+const FACES = [[1, 3, 7, 5], [0, 4, 6, 2], [2, 6, 7, 3], [0, 1, 5, 4], [4, 5, 7, 6], [0, 2, 3, 1]];
+const FACE_NORMALS = [[1, 0, 0], [-1, 0, 0], [0, 1, 0], [0, -1, 0], [0, 0, 1], [0, 0, -1]];
+
+// Interleaved vertices of the mesh program (shaders/mesh.vert): position and normal as floats,
+// material as four bytes (0..255, not normalised).
+const MESH_STRIDE = 28;
+// Per-instance data of the ray caster (shaders/hni_proxy.vert): eye in root units, the rotation's
+// three columns, the atlas origin as two integers.
+const INSTANCE_STRIDE = 56;
+
+export class CityRenderer {
+  // base: the URL of the manifest's folder; a building's HNI is base + hni.
+  constructor(gl, generated, city, base, options = {}) {
+    this.gl = gl;
+    this.constants = generated.constants;
+    this.city = city;
+    this.base = base;
+    this.options = { ...DEFAULT_OPTIONS, ...options };
+    this.programs = {
+      heuristic: buildProgram(gl, generated.programs.hniHeuristic),
+      exact: buildProgram(gl, generated.programs.hniExact),
+      mesh: buildProgram(gl, generated.programs.mesh),
+    };
+    this.pages = new AtlasPages(gl, this.options.atlasPageSize, this.options.maxAtlasPages);
+    this.buildings = city.buildings.map((b) => ({
+      state: 'unrequested', // requested, loaded, failed
+      lastSeen: 0,
+      evicted: false,
+      originM: b.positionM,
+      worldFromRoot: yawRotation(b.yawDeg),
+      bounds: b.boundsM,
+      slot: null,
+      rootSizeM: null,
+      summary: null,
+    }));
+    this.cityBox = manifestBounds(city);
+    this.uploadQueue = []; // { building, image, root }
+    this.finished = []; // fetches that completed since the last frame
+    this.failures = []; // "name: message", every failure so far
+    this.outstanding = 0;
+    this.frame = 0;
+    this.counts = { bytesStreamed: 0, loaded: 0, failed: 0, evicted: 0, refetched: 0 };
+    this.settled = false;
+
+    this.hniVertexArray = gl.createVertexArray();
+    this.instanceBuffer = gl.createBuffer();
+    gl.bindVertexArray(this.hniVertexArray);
+    gl.bindBuffer(gl.ARRAY_BUFFER, this.instanceBuffer);
+    gl.vertexAttribPointer(0, 3, gl.FLOAT, false, INSTANCE_STRIDE, 0);
+    for (let column = 0; column < 3; ++column) gl.vertexAttribPointer(1 + column, 3, gl.FLOAT, false, INSTANCE_STRIDE, 12 + 12 * column);
+    gl.vertexAttribIPointer(4, 2, gl.INT, INSTANCE_STRIDE, 48);
+    for (let attribute = 0; attribute < 5; ++attribute) {
+      gl.enableVertexAttribArray(attribute);
+      gl.vertexAttribDivisor(attribute, 1);
+    }
+    this.meshVertexArray = gl.createVertexArray();
+    this.meshBuffer = gl.createBuffer();
+    gl.bindVertexArray(this.meshVertexArray);
+    gl.bindBuffer(gl.ARRAY_BUFFER, this.meshBuffer);
+    gl.vertexAttribPointer(0, 3, gl.FLOAT, false, MESH_STRIDE, 0);
+    gl.vertexAttribPointer(1, 3, gl.FLOAT, false, MESH_STRIDE, 12);
+    gl.vertexAttribPointer(2, 4, gl.UNSIGNED_BYTE, false, MESH_STRIDE, 24);
+    for (let attribute = 0; attribute < 3; ++attribute) gl.enableVertexAttribArray(attribute);
+    gl.bindVertexArray(null);
+    gl.bindBuffer(gl.ARRAY_BUFFER, null);
+  }
+
+  // Fetches and decodes one building; the result waits in `finished` for the next frame.
+  async load(index) {
+    const entry = this.city.buildings[index];
+    let bytes = 0;
+    try {
+      const response = await fetch(new URL(entry.hni, this.base));
+      if (!response.ok) throw new Error(`${entry.hni}: HTTP ${response.status} ${response.statusText}`.trimEnd());
+      const buffer = await response.arrayBuffer();
+      bytes = buffer.byteLength;
+      let image;
+      try {
+        image = await decodePng(buffer);
+        this.finished.push({ building: index, bytes, image, root: readHniRoot(image, this.constants) });
+      } catch (error) {
+        throw new Error(`${entry.hni}: ${error.message}`);
+      }
+    } catch (error) {
+      this.finished.push({ building: index, bytes, error: error.message });
+    }
+  }
+
+  // Finished loads join the upload queue; failures are final.
+  receive() {
+    const newFailures = [];
+    for (const done of this.finished.splice(0)) {
+      --this.outstanding;
+      this.counts.bytesStreamed += done.bytes;
+      if (!done.error) {
+        this.uploadQueue.push(done);
+        continue;
+      }
+      this.buildings[done.building].state = 'failed';
+      ++this.counts.failed;
+      newFailures.push(`${this.city.buildings[done.building].name}: ${done.error}`);
+    }
+    return newFailures;
+  }
+
+  // Empties the page whose buildings were seen least recently, unless one was seen this frame.
+  evictLeastRecentlySeenPage() {
+    const lastSeen = this.pages.pages.map(() => 0);
+    for (const b of this.buildings) if (b.state === 'loaded') lastSeen[b.slot.page] = Math.max(lastSeen[b.slot.page], b.lastSeen);
+    if (lastSeen.length === 0) return false;
+    const oldest = lastSeen.indexOf(Math.min(...lastSeen));
+    if (lastSeen[oldest] >= this.frame) return false;
+    for (const b of this.buildings)
+      if (b.state === 'loaded' && b.slot.page === oldest) {
+        b.state = 'unrequested';
+        b.evicted = true;
+        --this.counts.loaded;
+        ++this.counts.evicted;
+      }
+    this.pages.clear(oldest);
+    return true;
+  }
+
+  // A slice of the upload queue into the atlas: up to the per-frame bytes, at least one HNI.
+  upload(stats, newFailures) {
+    let bytes = 0, taken = 0;
+    for (; taken < this.uploadQueue.length && (taken === 0 || bytes < this.options.uploadBytesPerFrame); ++taken) {
+      const { building, image, root } = this.uploadQueue[taken];
+      const b = this.buildings[building];
+      if (!this.pages.fits(image) && !this.evictLeastRecentlySeenPage()) {
+        stats.overBudget = true; // stays queued until the view moves on
+        break;
+      }
+      bytes += image.pixels.length;
+      try {
+        b.slot = this.pages.place(image);
+      } catch (error) {
+        b.state = 'failed';
+        ++this.counts.failed;
+        newFailures.push(`${this.city.buildings[building].name}: ${error.message}`);
+        continue;
+      }
+      b.rootSizeM = root.sizeUnits.map((u) => u * this.constants.metresPerUnit);
+      b.summary = root.summary;
+      b.bounds = placedBox(b.originM, b.worldFromRoot, b.rootSizeM);
+      b.state = 'loaded';
+      ++this.counts.loaded;
+      ++stats.uploaded;
+    }
+    this.uploadQueue.splice(0, taken);
+  }
+
+  // Receive, cull, upload a slice and request what the view needs next; the visible buildings,
+  // nearest first.
+  prepare(view, stats, newFailures) {
+    ++this.frame;
+    newFailures.push(...this.receive());
+    const eye = view.camera.eye;
+    const visible = [];
+    this.buildings.forEach((b, i) => {
+      if (b.state === 'failed') return;
+      if (this.options.frustumCulling && b.bounds && !view.mayBeVisible(b.bounds)) {
+        ++stats.culledByFrustum;
+        return;
+      }
+      const centre = b.bounds ? [0, 1, 2].map((a) => 0.5 * (b.bounds.min[a] + b.bounds.max[a])) : b.originM;
+      visible.push({ building: i, distance: length(sub(centre, eye)) });
+      b.lastSeen = this.frame;
+    });
+    visible.sort((x, y) => x.distance - y.distance || x.building - y.building);
+    this.upload(stats, newFailures);
+
+    for (const v of visible) {
+      const b = this.buildings[v.building];
+      if (b.state === 'loaded') continue;
+      ++stats.waiting;
+      if (b.state !== 'unrequested' || this.outstanding >= this.options.maxOutstanding) continue;
+      b.state = 'requested';
+      if (b.evicted) ++this.counts.refetched;
+      ++this.outstanding;
+      this.load(v.building);
+    }
+    this.settled = stats.waiting === 0 && this.uploadQueue.length === 0 && this.outstanding === 0;
+    return visible;
+  }
+
+  // Draws a frame into the bound framebuffer (cleared by the caller). Returns the frame's stats.
+  drawFrame(camera, cast = DEFAULT_CAST) {
+    const gl = this.gl;
+    const stats = {
+      known: this.buildings.length, drawn: 0, culledByFrustum: 0, waiting: 0, proxies: 0, asSummary: 0,
+      uploaded: 0, overBudget: false,
+    };
+    const newFailures = [];
+    const view = new FrameView(camera);
+    const visible = this.prepare(view, stats, newFailures);
+
+    // Boxes first, which the depth test keeps in front of what is ray-cast behind them.
+    const boxes = [];
+    const summarised = new Set();
+    if (this.options.ground && this.buildings.length > 0) {
+      const all = this.cityBox;
+      const margin = 0.5 * length(sub(all.max, all.min)) + 100;
+      boxes.push({
+        min: [all.min[0] - margin, all.min[1] - 0.1, all.min[2] - margin],
+        max: [all.max[0] + margin, all.min[1], all.max[2] + margin],
+        colours: Array(6).fill(GROUND),
+      });
+    }
+    for (const v of visible) {
+      const b = this.buildings[v.building];
+      if (b.state !== 'loaded' && this.options.proxies && b.bounds) {
+        boxes.push({ min: b.bounds.min, max: b.bounds.max, colours: Array(6).fill(PROXY_GREY) });
+        ++stats.proxies;
+      }
+      if (b.state === 'loaded' && this.options.summaryBelowPx > 0 &&
+          Math.max(...b.rootSizeM) < this.options.summaryBelowPx * Math.max(v.distance, 1e-3) * view.pixelAngle) {
+        boxes.push({ originM: b.originM, worldFromRoot: b.worldFromRoot, sizeM: b.rootSizeM, colours: b.summary });
+        summarised.add(v.building);
+        ++stats.asSummary;
+      }
+    }
+    this.drawBoxes(view, boxes);
+
+    // One instanced draw per page, pages in the order of their nearest building, nearest first
+    // within a page (or in manifest order without front-to-back).
+    const order = visible.filter((v) => this.buildings[v.building].state === 'loaded' && !summarised.has(v.building)).map((v) => v.building);
+    if (!this.options.frontToBack) order.sort((x, y) => x - y);
+    const perPage = new Map();
+    for (const i of order) {
+      const page = this.buildings[i].slot.page;
+      if (!perPage.has(page)) perPage.set(page, []);
+      perPage.get(page).push(i);
+      ++stats.drawn;
+    }
+    for (const [page, instances] of perPage) this.drawHnis(view, page, instances, cast);
+
+    Object.assign(stats, this.counts, { atlasBytes: this.pages.bytes(), settled: this.settled });
+    this.failures.push(...newFailures);
+    stats.newFailures = newFailures;
+    return stats;
+  }
+
+  // Boxes with the mesh program: axis-aligned { min, max } or placed { originM, worldFromRoot,
+  // sizeM }, each face its own colour; positions relative to the eye, computed in double.
+  drawBoxes(view, boxes) {
+    if (boxes.length === 0) return;
+    const gl = this.gl;
+    const eye = view.camera.eye;
+    const data = new ArrayBuffer(boxes.length * 36 * MESH_STRIDE);
+    const floats = new Float32Array(data), bytes = new Uint8Array(data);
+    let vertex = 0;
+    for (const box of boxes) {
+      const corner = [], normals = [];
+      for (let c = 0; c < 8; ++c) {
+        const t = [c & 1, (c >> 1) & 1, (c >> 2) & 1];
+        if (box.min) corner.push(t.map((s, a) => (s ? box.max[a] : box.min[a]) - eye[a]));
+        else {
+          const local = t.map((s, a) => s * box.sizeM[a]);
+          const r = box.worldFromRoot;
+          corner.push([0, 1, 2].map((a) => box.originM[a] + r[0][a] * local[0] + r[1][a] * local[1] + r[2][a] * local[2] - eye[a]));
+        }
+      }
+      for (let f = 0; f < 6; ++f) {
+        const n = FACE_NORMALS[f];
+        normals[f] = box.min ? n : [0, 1, 2].map((a) => box.worldFromRoot[0][a] * n[0] + box.worldFromRoot[1][a] * n[1] + box.worldFromRoot[2][a] * n[2]);
+        for (const k of [0, 1, 2, 0, 2, 3]) {
+          const p = corner[FACES[f][k]];
+          const o = vertex * (MESH_STRIDE / 4);
+          floats.set(p, o);
+          floats.set(normals[f], o + 3);
+          bytes.set([...box.colours[f].slice(0, 3), 255], vertex * MESH_STRIDE + 24);
+          ++vertex;
+        }
+      }
+    }
+    const program = this.programs.mesh;
+    gl.useProgram(program.id);
+    gl.uniform3f(program.uniform('uAnchorFromEye'), 0, 0, 0);
+    gl.uniformMatrix4fv(program.uniform('uClipFromEye'), false, view.clipFromEye);
+    gl.bindBuffer(gl.ARRAY_BUFFER, this.meshBuffer);
+    gl.bufferData(gl.ARRAY_BUFFER, data, gl.STREAM_DRAW);
+    gl.enable(gl.DEPTH_TEST);
+    gl.depthFunc(gl.LESS);
+    gl.depthMask(true);
+    gl.bindVertexArray(this.meshVertexArray);
+    gl.drawArrays(gl.TRIANGLES, 0, vertex);
+    gl.bindVertexArray(null);
+  }
+
+  // The ray caster over one page's buildings (viewer::HniRenderer::draw).
+  drawHnis(view, page, instances, cast) {
+    const gl = this.gl;
+    const data = new ArrayBuffer(instances.length * INSTANCE_STRIDE);
+    const floats = new Float32Array(data), ints = new Int32Array(data);
+    const eye = view.camera.eye;
+    instances.forEach((i, k) => {
+      const b = this.buildings[i];
+      const o = k * (INSTANCE_STRIDE / 4);
+      const d = sub(eye, b.originM);
+      // The eye in the root block's frame, in units: the transposed rotation times the offset.
+      for (let a = 0; a < 3; ++a) {
+        const r = b.worldFromRoot[a];
+        floats[o + a] = (r[0] * d[0] + r[1] * d[1] + r[2] * d[2]) / this.constants.metresPerUnit;
+      }
+      for (let c = 0; c < 3; ++c) floats.set(b.worldFromRoot[c], o + 3 + 3 * c);
+      ints[o + 12] = b.slot.origin[0];
+      ints[o + 13] = b.slot.origin[1];
+    });
+    gl.bindBuffer(gl.ARRAY_BUFFER, this.instanceBuffer);
+    gl.bufferData(gl.ARRAY_BUFFER, data, gl.STREAM_DRAW);
+
+    const program = cast.exactLookup ? this.programs.exact : this.programs.heuristic;
+    gl.useProgram(program.id);
+    gl.activeTexture(gl.TEXTURE0);
+    gl.bindTexture(gl.TEXTURE_2D, this.pages.texture(page));
+    gl.uniform1i(program.uniform('uHni'), 0);
+    gl.uniformMatrix4fv(program.uniform('uClipFromEye'), false, view.proxyClipFromEye);
+    gl.uniform3fv(program.uniform('uForward'), view.forward);
+    gl.uniform3fv(program.uniform('uRight'), view.right);
+    gl.uniform3fv(program.uniform('uUp'), view.up);
+    gl.uniform2f(program.uniform('uTanHalf'), view.tanHalfX, view.tanHalfY);
+    gl.uniform2f(program.uniform('uViewportSize'), view.camera.width, view.camera.height);
+    gl.uniform2fv(program.uniform('uDepthFromEyeZ'), view.depthFromEyeZ);
+    gl.uniform1f(program.uniform('uPixelAngle'), view.pixelAngle);
+    gl.uniform1f(program.uniform('uLodPx'), cast.lodPx);
+    gl.uniform1i(program.uniform('uLodAuto'), cast.lodAuto ? 1 : 0);
+    gl.uniform1i(program.uniform('uMaxIterations'), cast.maxIterations);
+    gl.uniform1i(program.uniform('uHeatMap'), cast.heatMap ? 1 : 0);
+
+    gl.enable(gl.DEPTH_TEST);
+    gl.depthFunc(gl.LEQUAL); // capped rays are drawn at depth 1, the cleared value
+    gl.depthMask(true);
+    gl.enable(gl.CULL_FACE);
+    gl.cullFace(gl.FRONT);
+    gl.enable(gl.BLEND);
+    gl.blendFunc(gl.ONE, gl.SRC_ALPHA);
+    gl.bindVertexArray(this.hniVertexArray);
+    gl.drawArraysInstanced(gl.TRIANGLES, 0, 36, instances.length);
+    gl.bindVertexArray(null);
+    gl.disable(gl.BLEND);
+    gl.disable(gl.CULL_FACE);
+  }
+}
