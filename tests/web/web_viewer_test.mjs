@@ -4,7 +4,8 @@
 //   city      a 100-building city written by `nut city`, the page written beside it by
 //             `nut-viewer --export-web`, screenshotted from a fixed camera once it has streamed
 //             in, and compared with the desktop viewer's OSMesa render of the same camera
-//             (`nut-viewer --headless`): at least 99.5 % of pixels within 8/255, by `nut compare`.
+//             (`nut-viewer --headless`): at least 99.5 % of pixels within 8/255, by `nut compare`;
+//             and the page without occlusion culling draws the same image.
 //   bytes     every sample HNI and a PNG of each layout nut's reader widens, decoded by the page
 //             and read back from the atlas texture: 0 bytes differ from libpng's decoding.
 //   broken    the city with corrupt, truncated and missing PNGs: the page still settles, names
@@ -60,18 +61,25 @@ function cameraFor(cityJson) {
   return { eye: target.map((t, a) => t + (1.1 * radius * from[a]) / norm), target };
 }
 
-// Screenshot of the page's canvas, and the desktop viewer's render of the same camera, compared.
-async function compareWithDesktop(browser, name, server, cityDir, camera) {
+// Screenshot of the page's canvas once settled, with `extra` URL parameters: { status, messages }.
+async function screenshot(browser, name, server, camera, shot, extra = {}) {
   const query = new URLSearchParams({
     eye: camera.eye.join(','), target: camera.target.join(','), fov: '40', size: `${SIZE[0]}x${SIZE[1]}`, ground: '0', hud: '0',
+    ...extra,
   });
   const messages = [];
   const page = await open(browser, `${server.url}index.html?${query}`, SIZE, messages);
   const status = await page.evaluate(() => window.nutViewer);
   check(status.state === 'settled', `${name}: the page settled (${status.state}${status.error ? ': ' + status.error : ''})`);
-  const shot = path.join(work, `${name}-browser.png`);
   await (await page.$('#view')).screenshot({ path: shot });
   await page.close();
+  return { status, messages };
+}
+
+// Screenshot of the page's canvas, and the desktop viewer's render of the same camera, compared.
+async function compareWithDesktop(browser, name, server, cityDir, camera) {
+  const shot = path.join(work, `${name}-browser.png`);
+  const { status, messages } = await screenshot(browser, name, server, camera, shot);
   const cameraPath = path.join(work, `${name}-camera.json`);
   fs.writeFileSync(cameraPath, JSON.stringify({ fov_deg: 40, keyframes: [camera] }));
   const desktop = path.join(work, `${name}-desktop.png`);
@@ -97,12 +105,21 @@ async function cityTest(browser) {
   makeCity(cityDir);
   const server = await serve(cityDir);
   try {
-    const { status, messages } = await compareWithDesktop(browser, 'city', server, cityDir, cameraFor(path.join(cityDir, 'city.json')));
+    const camera = cameraFor(path.join(cityDir, 'city.json'));
+    const { status, messages } = await compareWithDesktop(browser, 'city', server, cityDir, camera);
     check(status.stats.waiting === 0 && status.stats.drawn >= 20,
-      `city: ${status.stats.drawn} buildings drawn, ${status.stats.loaded} of ${status.stats.known} loaded, none waiting`);
+      `city: ${status.stats.drawn} buildings drawn, ${status.stats.culledByOcclusion} hidden, ${status.stats.loaded} of ` +
+        `${status.stats.known} loaded, none waiting`);
     check(status.failures.length === 0, `city: no file failed (${status.failures.join('; ')})`);
     const errors = messages.filter((m) => m.startsWith('error') || m.startsWith('pageerror'));
     check(errors.length === 0, `city: no errors in the console (${errors.join('; ')})`);
+    // Occlusion culling skips only what is hidden: the same view without it is the same image.
+    const unculled = path.join(work, 'city-browser-no-occlusion.png');
+    const off = await screenshot(browser, 'city, no occlusion culling', server, camera, unculled, { occlusion: '0' });
+    const same = JSON.parse(run(args.nut, ['compare', path.join(work, 'city-browser.png'), unculled, '--json', '--threshold', '0']));
+    check(same.differing === 0 && off.status.stats.culledByOcclusion === 0,
+      `city: the same image without occlusion culling (${same.differing} pixels differ; ${status.stats.culledByOcclusion} ` +
+        `buildings were skipped as hidden, ${off.status.stats.drawn} drawn without)`);
   } finally {
     server.stop();
   }

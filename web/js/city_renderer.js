@@ -2,11 +2,12 @@
 // viewer's policy (viewer/city_renderer.hpp): the buildings the camera can see are fetched nearest
 // first, a bounded number at a time; decoded HNIs are uploaded into atlas pages in bounded slices
 // per frame; when the pages (the memory budget) are full, the page seen least recently is emptied;
-// buildings are frustum-culled, drawn front to back, one instanced draw per page; a building not
+// buildings are frustum-culled, drawn front to back, one instanced draw per page; a building whose
+// box was hidden in the last frame that tested it is skipped (occlusion culling); a building not
 // loaded yet is drawn as its grey box, a far one as its summary box, and a file that fails to
 // load or decode is reported and drawn as missing. The frame never waits for a file.
 //
-// Not here (docs/WEB.md): occlusion culling, and complementary meshes (OBJ), which are not fetched.
+// Not here (docs/WEB.md): complementary meshes (OBJ), which are not fetched.
 
 import { AtlasPages } from './atlas.js';
 import { manifestBounds, placedBox, yawRotation } from './city.js';
@@ -19,6 +20,10 @@ const GROUND = [196, 198, 190];
 
 export const DEFAULT_OPTIONS = {
   frustumCulling: true,
+  // Each frame, every drawn building's box, enlarged by 1 % and 5 cm, is depth-tested against the
+  // finished frame in an occlusion query; a building none of whose box passed is skipped until a
+  // later query finds it visible. A building whose box holds the eye is always drawn.
+  occlusionCulling: true,
   frontToBack: true,
   proxies: true,
   summaryBelowPx: 0, // a loaded building whose largest side spans fewer pixels: its summary box
@@ -31,6 +36,15 @@ export const DEFAULT_OPTIONS = {
 
 // Ray-casting options, as nut::RayCastOptions.
 export const DEFAULT_CAST = { exactLookup: true, lodPx: 0, lodAuto: false, maxIterations: 512, heatMap: false };
+
+// A building's box enlarged by 1 % and 5 cm, so that its own surfaces never hide its probe.
+function probeBox(box) {
+  const grow = [0, 1, 2].map((a) => 0.01 * (box.max[a] - box.min[a]) + 0.05);
+  return { min: box.min.map((v, a) => v - grow[a]), max: box.max.map((v, a) => v + grow[a]) };
+}
+
+// Whether p lies in the box: an eye inside a probe box cannot test it.
+const holds = (box, p) => [0, 1, 2].every((a) => p[a] >= box.min[a] && p[a] <= box.max[a]);
 
 // The six faces of a box (corner bits x = c & 1, y = c & 2, z = c & 4), counter-clockwise seen
 // from outside, with their normals: +x, -x, +y, -y, +z, -z.
@@ -68,6 +82,10 @@ export class CityRenderer {
       slot: null,
       rootSizeM: null,
       summary: null,
+      query: null, // its occlusion query, while one is in flight
+      queryFrame: 0, // the frame that issued it
+      occluded: false, // the last query's answer
+      answerFrame: 0, // the frame that issued the query of that answer
     }));
     this.cityBox = manifestBounds(city);
     this.uploadQueue = []; // { building, image, root }
@@ -77,6 +95,9 @@ export class CityRenderer {
     this.frame = 0;
     this.counts = { bytesStreamed: 0, loaded: 0, failed: 0, evicted: 0, refetched: 0 };
     this.settled = false;
+    // The first frame of the current run of frames with one view and nothing left to stream.
+    this.stillSince = Infinity;
+    this.lastView = '';
 
     this.hniVertexArray = gl.createVertexArray();
     this.instanceBuffer = gl.createBuffer();
@@ -150,6 +171,7 @@ export class CityRenderer {
       if (b.state === 'loaded' && b.slot.page === oldest) {
         b.state = 'unrequested';
         b.evicted = true;
+        this.dropQuery(b);
         --this.counts.loaded;
         ++this.counts.evicted;
       }
@@ -184,6 +206,54 @@ export class CityRenderer {
       ++stats.uploaded;
     }
     this.uploadQueue.splice(0, taken);
+  }
+
+  dropQuery(b) {
+    if (b.query) this.gl.deleteQuery(b.query);
+    b.query = null;
+    b.occluded = false;
+  }
+
+  // The answers of earlier frames' queries that have arrived (WebGL2 gives none within the frame
+  // that asked); one still in flight keeps its building's previous answer. Returns how many
+  // buildings changed between hidden and visible.
+  collectOcclusion() {
+    const gl = this.gl;
+    let changed = 0;
+    for (const b of this.buildings) {
+      if (!b.query || !gl.getQueryParameter(b.query, gl.QUERY_RESULT_AVAILABLE)) continue;
+      const occluded = !gl.getQueryParameter(b.query, gl.QUERY_RESULT);
+      if (occluded !== b.occluded) ++changed;
+      b.occluded = occluded;
+      b.answerFrame = b.queryFrame;
+      gl.deleteQuery(b.query);
+      b.query = null;
+    }
+    return changed;
+  }
+
+  // After the frame: one query per building drawn or skipped as hidden, its probe box against the
+  // frame's depth, without writing colour or depth.
+  issueOcclusionQueries(view, tested) {
+    const gl = this.gl;
+    const probed = tested.filter((i) => !this.buildings[i].query);
+    if (probed.length === 0) return;
+    this.uploadBoxes(view, probed.map((i) => ({ ...probeBox(this.buildings[i].bounds), colours: Array(6).fill(PROXY_GREY) })));
+    gl.depthFunc(gl.LEQUAL);
+    gl.depthMask(false);
+    gl.colorMask(false, false, false, false);
+    gl.bindVertexArray(this.meshVertexArray);
+    probed.forEach((i, k) => {
+      const b = this.buildings[i];
+      b.query = gl.createQuery();
+      b.queryFrame = this.frame;
+      gl.beginQuery(gl.ANY_SAMPLES_PASSED_CONSERVATIVE, b.query);
+      gl.drawArrays(gl.TRIANGLES, 36 * k, 36);
+      gl.endQuery(gl.ANY_SAMPLES_PASSED_CONSERVATIVE);
+    });
+    gl.bindVertexArray(null);
+    gl.colorMask(true, true, true, true);
+    gl.depthMask(true);
   }
 
   // Receive, cull, upload a slice and request what the view needs next; the visible buildings,
@@ -224,11 +294,13 @@ export class CityRenderer {
   drawFrame(camera, cast = DEFAULT_CAST) {
     const gl = this.gl;
     const stats = {
-      known: this.buildings.length, drawn: 0, culledByFrustum: 0, waiting: 0, proxies: 0, asSummary: 0,
+      known: this.buildings.length, drawn: 0, culledByFrustum: 0, culledByOcclusion: 0, waiting: 0, proxies: 0, asSummary: 0,
       uploaded: 0, overBudget: false,
     };
     const newFailures = [];
     const view = new FrameView(camera);
+    const occlusion = this.options.occlusionCulling;
+    const occlusionChanged = occlusion ? this.collectOcclusion() : 0;
     const visible = this.prepare(view, stats, newFailures);
 
     // Boxes first, which the depth test keeps in front of what is ray-cast behind them.
@@ -263,15 +335,34 @@ export class CityRenderer {
     const order = visible.filter((v) => this.buildings[v.building].state === 'loaded' && !summarised.has(v.building)).map((v) => v.building);
     if (!this.options.frontToBack) order.sort((x, y) => x - y);
     const perPage = new Map();
+    const tested = []; // the buildings this frame's occlusion queries test
     for (const i of order) {
-      const page = this.buildings[i].slot.page;
+      const b = this.buildings[i];
+      const testable = occlusion && !holds(probeBox(b.bounds), view.camera.eye);
+      if (testable) tested.push(i);
+      if (testable && b.occluded) {
+        ++stats.culledByOcclusion;
+        continue;
+      }
+      const page = b.slot.page;
       if (!perPage.has(page)) perPage.set(page, []);
       perPage.get(page).push(i);
       ++stats.drawn;
     }
     for (const [page, instances] of perPage) this.drawHnis(view, page, instances, cast);
+    if (occlusion) this.issueOcclusionQueries(view, tested);
 
-    Object.assign(stats, this.counts, { atlasBytes: this.pages.bytes(), settled: this.settled });
+    // Settled: everything in view is loaded, and every building skipped as hidden was found hidden
+    // by a query of this view with nothing left to stream (earlier ones may have tested it against
+    // the grey box of a building still loading, or from elsewhere).
+    const viewKey = JSON.stringify(camera);
+    if (!this.settled || viewKey !== this.lastView) this.stillSince = Infinity;
+    else if (this.stillSince === Infinity) this.stillSince = this.frame;
+    this.lastView = viewKey;
+    const answered = tested.every((i) => !this.buildings[i].occluded || this.buildings[i].answerFrame >= this.stillSince);
+    Object.assign(stats, this.counts, {
+      atlasBytes: this.pages.bytes(), settled: this.settled && occlusionChanged === 0 && (!occlusion || answered),
+    });
     this.failures.push(...newFailures);
     stats.newFailures = newFailures;
     return stats;
@@ -281,6 +372,18 @@ export class CityRenderer {
   // sizeM }, each face its own colour; positions relative to the eye, computed in double.
   drawBoxes(view, boxes) {
     if (boxes.length === 0) return;
+    const gl = this.gl;
+    const vertices = this.uploadBoxes(view, boxes);
+    gl.depthFunc(gl.LESS);
+    gl.depthMask(true);
+    gl.bindVertexArray(this.meshVertexArray);
+    gl.drawArrays(gl.TRIANGLES, 0, vertices);
+    gl.bindVertexArray(null);
+  }
+
+  // The boxes' vertices into the mesh buffer, 36 a box in order, with the mesh program bound and
+  // the depth test on. Returns the vertex count.
+  uploadBoxes(view, boxes) {
     const gl = this.gl;
     const eye = view.camera.eye;
     const data = new ArrayBuffer(boxes.length * 36 * MESH_STRIDE);
@@ -317,11 +420,7 @@ export class CityRenderer {
     gl.bindBuffer(gl.ARRAY_BUFFER, this.meshBuffer);
     gl.bufferData(gl.ARRAY_BUFFER, data, gl.STREAM_DRAW);
     gl.enable(gl.DEPTH_TEST);
-    gl.depthFunc(gl.LESS);
-    gl.depthMask(true);
-    gl.bindVertexArray(this.meshVertexArray);
-    gl.drawArrays(gl.TRIANGLES, 0, vertex);
-    gl.bindVertexArray(null);
+    return vertex;
   }
 
   // The ray caster over one page's buildings (viewer::HniRenderer::draw).

@@ -5,7 +5,8 @@
 // metres), fov (vertical, degrees), size (WxH: a fixed canvas, for screenshots), lookup
 // (exact | heuristic), lod (pixels, or auto), heat (1: iteration heat-map), iterations, ground
 // (0: none), proxies (0: none), hud (0: no overlays), summary (pixels), budget (MiB of atlas
-// pages), frustum (0: no culling), order (manifest: no front-to-back order).
+// pages), frustum (0: no frustum culling), occlusion (0: no occlusion culling), order (manifest:
+// no front-to-back order).
 //
 // For tests and scripts, window.nutViewer holds { state: 'loading' | 'streaming' | 'settled' |
 // 'error', stats, failures, error }, and <body data-state> follows state.
@@ -92,6 +93,7 @@ async function start() {
     ground: params.get('ground') !== '0',
     proxies: params.get('proxies') !== '0',
     frustumCulling: params.get('frustum') !== '0',
+    occlusionCulling: params.get('occlusion') !== '0',
     frontToBack: params.get('order') !== 'manifest',
     summaryBelowPx: numberParam(params, 'summary', 0, 0),
     maxAtlasPages: Math.max(1, Math.floor(numberParam(params, 'budget', 256, 1) / ((4 * DEFAULT_OPTIONS.atlasPageSize ** 2) / (1 << 20)))),
@@ -161,7 +163,8 @@ async function start() {
     status.failures = renderer.failures;
     hud.textContent =
       (stats.frameMs ? `${(1000 / stats.frameMs).toFixed(1)} fps · ${stats.frameMs.toFixed(0)} ms a frame\n` : 'fps: measuring\n') +
-      `buildings ${stats.loaded} loaded / ${stats.known} · ${stats.drawn} drawn · ${stats.culledByFrustum} culled\n` +
+      `buildings ${stats.loaded} loaded / ${stats.known} · ${stats.drawn} drawn · culled ${stats.culledByFrustum} by the frustum, ` +
+      `${stats.culledByOcclusion} hidden\n` +
       `${megabytes(stats.bytesStreamed)} MB streamed · atlas ${megabytes(stats.atlasBytes)} MB` +
       (stats.failed ? ` · ${stats.failed} failed` : '') + (stats.overBudget ? ' · over budget' : '');
     const done = stats.drawn + stats.asSummary;
