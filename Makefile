@@ -3,6 +3,8 @@
 #               converted OBJ samples (two buildings, a street as a city) beside their meshes, under out/
 #   make test   install deps, build, run the whole test suite (ctest) and a short fuzz run
 #   make bench  run the benchmarks (Release build)
+#   make bench-quick   every benchmark once on small inputs, then the pinned ratios against their
+#               baselines (bench/pinned_ratios.json): fails when one fell past its margin
 #   make fuzz   run one libFuzzer target longer: make fuzz TARGET=obj_fuzz FUZZ_SECONDS=600
 #               (targets: hni_fuzz, the default, obj_fuzz, city_fuzz, render_fuzz, grammar_fuzz; docs/INPUT.md)
 #   make core-check   build the core alone (optional modules off) and check what it links
@@ -35,7 +37,7 @@ fuzz-smoke-run = echo "fuzz: $(1) for $(2) s" >&2; $(call fuzz-run,$(1),$(2)) 2>
 fuzz-smoke-seconds = $(if $(filter hni_fuzz,$(1)),$(FUZZ_SMOKE_SECONDS),$(FUZZ_SMOKE_OTHER_SECONDS))
 OUT ?= out
 
-.PHONY: deps build test demo bench fuzz fuzz-build fuzz-smoke core-check test-sanitize test-thread clean
+.PHONY: deps build test demo bench bench-quick fuzz fuzz-build fuzz-smoke core-check test-sanitize test-thread clean
 
 deps:
 	@./scripts/install-deps.sh
@@ -78,6 +80,9 @@ demo: build
 
 bench: build
 	@./scripts/bench.sh $(BUILD)
+
+bench-quick: build
+	@./scripts/bench-quick.sh $(BUILD)
 
 fuzz-build: deps
 	@cmake -S . -B $(FUZZ_BUILD) -DCMAKE_BUILD_TYPE=RelWithDebInfo -DNUT_BUILD_FUZZ=ON -DNUT_BUILD_BENCH=OFF \

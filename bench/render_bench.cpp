@@ -4,10 +4,14 @@
 // Results read as rays/s; docs/BENCHMARKS.md records a run.
 #include <benchmark/benchmark.h>
 
+#include <algorithm>
+#include <chrono>
 #include <cstdio>
+#include <cstdlib>
 #include <map>
 #include <memory>
 #include <string>
+#include <thread>
 
 #include <meshref/embree_renderer.hpp>
 #include <nut/hni.hpp>
@@ -68,6 +72,16 @@ void setRate(benchmark::State& state) {
   state.SetItemsProcessed(state.iterations() * kWidth * kHeight);
 }
 
+// Test-only: NUT_BENCH_SLOWDOWN=k makes each frame of the NUT caster take k times as long (a sleep
+// after it), so that a test can show the guard of make bench-quick catching a slower caster.
+double slowdown() {
+  static const double k = [] {
+    const char* text = std::getenv("NUT_BENCH_SLOWDOWN");
+    return text ? std::max(1.0, std::atof(text)) : 1.0;
+  }();
+  return k;
+}
+
 void nutCaster(benchmark::State& state, const std::string& name, nut::Lookup lookup, double lodPx, bool far) {
   const Scene& s = scene(name);
   const nut::Camera& camera = far ? s.farCamera : s.camera;
@@ -77,8 +91,10 @@ void nutCaster(benchmark::State& state, const std::string& name, nut::Lookup loo
   nut::RenderStats stats;
   nut::RenderOutput out;
   for (auto _ : state) {
+    const auto start = std::chrono::steady_clock::now();
     out = nut::renderHni(*s.caster, camera, options, kThreads, &stats);
     benchmark::DoNotOptimize(out.colour.pixels.data());
+    if (slowdown() > 1) std::this_thread::sleep_for((slowdown() - 1) * (std::chrono::steady_clock::now() - start));
   }
   setRate(state);
   state.counters["iterations_mean"] = stats.iterationsMean;
