@@ -5,15 +5,16 @@
 // picks the scanline filters itself. Beside each PNG goes NAME.rgba: its pixels as nut's reader
 // (libpng) decodes them, the independent reference the page's decoder must match byte for byte.
 // files.json lists the names.
+#include <cstdint>
 #include <cstdio>
 #include <filesystem>
 #include <random>
 #include <string>
 #include <vector>
 
-#include <png.h>
-
 #include <nut/png_io.hpp>
+
+#include "foreign_png.hpp"
 
 namespace {
 
@@ -23,7 +24,7 @@ struct Layout {
   bool transparency;
 };
 
-// Writes random pixels in one layout with libpng; returns false on a libpng error.
+// Random pixels in one layout, written by libpng; returns false on a libpng error.
 bool writeLayout(const std::string& path, const Layout& layout, std::mt19937& random) {
   constexpr int kWidth = 37, kHeight = 23;  // odd sizes: rows end inside a byte at low depths
   const int channels = layout.colourType == PNG_COLOR_TYPE_GRAY || layout.colourType == PNG_COLOR_TYPE_PALETTE ? 1
@@ -32,48 +33,26 @@ bool writeLayout(const std::string& path, const Layout& layout, std::mt19937& ra
                                                                                                                   : 4;
   const int maxSample = (1 << layout.bitDepth) - 1;
   const std::size_t stride = (static_cast<std::size_t>(kWidth) * channels * layout.bitDepth + 7) / 8;
-  std::vector<std::vector<png_byte>> rows(kHeight, std::vector<png_byte>(stride, 0));
-  for (auto& row : rows)
+  nut::testing::ForeignPng png{kWidth, kHeight, layout.colourType, layout.bitDepth};
+  png.rows.assign(kHeight, std::vector<std::uint8_t>(stride, 0));
+  for (auto& row : png.rows)
     for (int i = 0; i < kWidth * channels; ++i) {
       // Runs of equal samples (which the filters turn into zeros) between random ones.
       const int value = static_cast<int>(random() % 4 == 0 ? 0 : random() % static_cast<unsigned>(maxSample + 1));
       const int bit = i * layout.bitDepth;
-      row[static_cast<std::size_t>(bit / 8)] |= static_cast<png_byte>(value << (8 - layout.bitDepth - bit % 8));
+      row[static_cast<std::size_t>(bit / 8)] |= static_cast<std::uint8_t>(value << (8 - layout.bitDepth - bit % 8));
     }
-  std::FILE* file = std::fopen(path.c_str(), "wb");
-  if (!file) return false;
-  png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, nullptr, nullptr, nullptr);
-  png_infop info = png_create_info_struct(png);
-  if (setjmp(png_jmpbuf(png))) {
-    png_destroy_write_struct(&png, &info);
-    std::fclose(file);
-    return false;
-  }
-  png_init_io(png, file);
-  png_set_IHDR(png, info, kWidth, kHeight, layout.bitDepth, layout.colourType, PNG_INTERLACE_NONE,
-               PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
-  std::vector<png_color> palette;
-  std::vector<png_byte> alphas;
   if (layout.colourType == PNG_COLOR_TYPE_PALETTE) {
     for (int i = 0; i <= maxSample; ++i)
-      palette.push_back({static_cast<png_byte>(random()), static_cast<png_byte>(random()), static_cast<png_byte>(random())});
-    png_set_PLTE(png, info, palette.data(), static_cast<int>(palette.size()));
-    if (layout.transparency) {
-      for (int i = 0; i <= maxSample / 2; ++i) alphas.push_back(static_cast<png_byte>(random()));
-      png_set_tRNS(png, info, alphas.data(), static_cast<int>(alphas.size()), nullptr);
-    }
+      png.palette.push_back({static_cast<png_byte>(random()), static_cast<png_byte>(random()), static_cast<png_byte>(random())});
+    if (layout.transparency)
+      for (int i = 0; i <= maxSample / 2; ++i) png.paletteAlpha.push_back(static_cast<std::uint8_t>(random()));
   } else if (layout.transparency) {
-    png_color_16 key{};
-    key.gray = static_cast<png_uint_16>(maxSample);
-    key.red = key.green = key.blue = 0;  // the zero runs above hit it
-    png_set_tRNS(png, info, nullptr, 0, &key);
+    png.keyed = true;
+    png.key.gray = static_cast<png_uint_16>(maxSample);  // the keys the random samples hit: grey at
+    png.key.red = png.key.green = png.key.blue = 0;      // its maximum, RGB in the zero runs
   }
-  std::vector<png_bytep> pointers;
-  for (auto& row : rows) pointers.push_back(row.data());
-  png_set_rows(png, info, pointers.data());
-  png_write_png(png, info, PNG_TRANSFORM_IDENTITY, nullptr);
-  png_destroy_write_struct(&png, &info);
-  return std::fclose(file) == 0;
+  return nut::testing::writeForeignPng(path, png);
 }
 
 }  // namespace
