@@ -5,7 +5,7 @@
 //             `nut-viewer --export-web`, screenshotted from a fixed camera once it has streamed
 //             in, and compared with the desktop viewer's OSMesa render of the same camera
 //             (`nut-viewer --headless`): at least 99.5 % of pixels within 8/255, by `nut compare`;
-//             and the page without occlusion culling draws the same image.
+//             the page without occlusion culling draws the same image; and W held moves the view.
 //   bytes     every sample HNI and a PNG of each layout nut's reader widens, decoded by the page
 //             and read back from the atlas texture: 0 bytes differ from libpng's decoding.
 //   broken    the city with corrupt, truncated and missing PNGs: the page still settles, names
@@ -120,9 +120,28 @@ async function cityTest(browser) {
     check(same.differing === 0 && off.status.stats.culledByOcclusion === 0,
       `city: the same image without occlusion culling (${same.differing} pixels differ; ${status.stats.culledByOcclusion} ` +
         `buildings were skipped as hidden, ${off.status.stats.drawn} drawn without)`);
+    await flyTest(browser, server, camera);
   } finally {
     server.stop();
   }
+}
+
+// The fly camera: W held moves the view forward, and the page streams and settles again.
+async function flyTest(browser, server, camera) {
+  const query = new URLSearchParams({
+    eye: camera.eye.join(','), target: camera.target.join(','), size: `${SIZE[0]}x${SIZE[1]}`, ground: '0', hud: '0',
+  });
+  const page = await open(browser, `${server.url}index.html?${query}`, SIZE, []);
+  const before = path.join(work, 'fly-before.png'), after = path.join(work, 'fly-after.png');
+  await (await page.$('#view')).screenshot({ path: before });
+  await page.keyboard.down('KeyW');
+  await page.waitForFunction(() => document.body.dataset.state === 'streaming', { timeout: 60000, polling: 50 });
+  await page.keyboard.up('KeyW');
+  await page.waitForFunction(() => document.body.dataset.state === 'settled', { timeout: 240000, polling: 200 });
+  await (await page.$('#view')).screenshot({ path: after });
+  await page.close();
+  const moved = JSON.parse(run(args.nut, ['compare', before, after, '--json']));
+  check(moved.differing_pct > 1, `city: W moves the camera forward (${moved.differing_pct.toFixed(1)} % of pixels changed)`);
 }
 
 async function bytesTest(browser) {
