@@ -122,24 +122,20 @@ export class CityRenderer {
     gl.bindBuffer(gl.ARRAY_BUFFER, null);
   }
 
-  // Fetches and decodes one building; the result waits in `finished` for the next frame.
+  // Fetches and decodes one building; the result waits in `finished` for the next frame. Every
+  // failure (network, HTTP, decoding, header) names the file.
   async load(index) {
     const entry = this.city.buildings[index];
     let bytes = 0;
     try {
       const response = await fetch(new URL(entry.hni, this.base));
-      if (!response.ok) throw new Error(`${entry.hni}: HTTP ${response.status} ${response.statusText}`.trimEnd());
+      if (!response.ok) throw new Error(`HTTP ${response.status} ${response.statusText}`.trimEnd());
       const buffer = await response.arrayBuffer();
       bytes = buffer.byteLength;
-      let image;
-      try {
-        image = await decodePng(buffer);
-        this.finished.push({ building: index, bytes, image, root: readHniRoot(image, this.constants) });
-      } catch (error) {
-        throw new Error(`${entry.hni}: ${error.message}`);
-      }
+      const image = await decodePng(buffer);
+      this.finished.push({ building: index, bytes, image, root: readHniRoot(image, this.constants) });
     } catch (error) {
-      this.finished.push({ building: index, bytes, error: error.message });
+      this.finished.push({ building: index, bytes, error: `${entry.hni}: ${error.message}` });
     }
   }
 

@@ -80,6 +80,16 @@ async function start() {
     canvas.style.width = `${canvas.width}px`;
     canvas.style.height = `${canvas.height}px`;
   }
+  // Without ?size, the drawing buffer follows the window; returns whether it changed.
+  const followWindow = () => {
+    if (size) return false;
+    const w = Math.round(canvas.clientWidth * devicePixelRatio), h = Math.round(canvas.clientHeight * devicePixelRatio);
+    if (w <= 0 || h <= 0 || (canvas.width === w && canvas.height === h)) return false;
+    canvas.width = w;
+    canvas.height = h;
+    return true;
+  };
+  followWindow(); // before the camera is fitted to the canvas's aspect
   // No alpha in the drawing buffer: the caster leaves alpha 0 where it drew (hni_raycast.frag), and
   // the page must not show through. No multisampling: the image is the desktop viewer's.
   const gl = canvas.getContext('webgl2', { alpha: false, antialias: false, depth: true, premultipliedAlpha: false });
@@ -87,7 +97,7 @@ async function start() {
 
   const box = manifestBounds(city);
   const fov = numberParam(params, 'fov', 40, 1);
-  const fitted = fitCamera(box, canvas.width || 1280, canvas.height || 720, fov);
+  const fitted = fitCamera(box, canvas.width, canvas.height, fov);
   const fixedCamera = { eye: vectorParam(params, 'eye') ?? fitted.eye, target: vectorParam(params, 'target') ?? fitted.target };
   const options = {
     ground: params.get('ground') !== '0',
@@ -122,16 +132,9 @@ async function start() {
   const frame = (now) => {
     const seconds = Math.min(0.1, (now - last) / 1000);
     last = now;
-    let changed = fly.update(seconds);
-    flown ||= changed;
-    if (!size) {
-      const w = Math.round(canvas.clientWidth * devicePixelRatio), h = Math.round(canvas.clientHeight * devicePixelRatio);
-      if (w > 0 && h > 0 && (canvas.width !== w || canvas.height !== h)) {
-        canvas.width = w;
-        canvas.height = h;
-        changed = true;
-      }
-    }
+    const moved = fly.update(seconds);
+    flown ||= moved;
+    const changed = followWindow() || moved;
     // A settled, unchanged view is not drawn again.
     if (status.state === 'settled' && !changed) {
       idle = true;
