@@ -26,15 +26,11 @@ for program in packer_bench lookup_bench grammar_bench render_bench load_bench s
     { cat "$out/smoke/$program.log" >&2; echo "bench-quick: $program failed" >&2; exit 1; }
 done
 
-declare -A ratio_filter=(
-  [render_bench]='^Render/(embree|nut_heuristic)/'
-  [lookup_bench]='^BM_Lookup/(native|heuristic|exact)/32$'
-  [packer_bench]='^BM_MaxRects(Online|Global)BAF/40$'
-)
-for program in render_bench lookup_bench packer_bench; do
+# Each program behind a pinned ratio, filtered to the benchmarks its ratios need.
+python3 "$root/scripts/bench_ratios.py" --filters | while read -r program filter; do
   echo "bench-quick: $program, 5 repetitions" >&2
   "$build/bench/$program" --benchmark_min_time=0.05 --benchmark_repetitions=5 --benchmark_enable_random_interleaving=true \
-    --benchmark_filter="${ratio_filter[$program]}" --benchmark_out="$out/$program.json" --benchmark_out_format=json \
+    --benchmark_filter="$filter" --benchmark_out="$out/$program.json" --benchmark_out_format=json \
     >"$out/$program.log" 2>&1 || { cat "$out/$program.log" >&2; echo "bench-quick: $program failed" >&2; exit 1; }
 done
 python3 "$root/scripts/bench_ratios.py" "$out"

@@ -2,6 +2,7 @@
 """The pinned ratios of docs/BENCHMARKS.md, and the guard of make bench-quick.
 
 bench_ratios.py RESULTS_DIR [--pinned bench/pinned_ratios.json] [--programs P,...] [--write-baseline]
+bench_ratios.py --filters [--pinned ...]
 
 Reads the Google Benchmark JSON files RESULTS_DIR/PROGRAM.json, takes for each pinned ratio the
 median of the numerator's and of the denominator's repetitions (or their single run), and prints
@@ -11,11 +12,13 @@ one line per ratio in a fixed form that scripts can read:
 
 Exit status 1 when a ratio is below its guard, baseline x (1 - margin), naming it on stderr; 2
 when a result is missing. --programs checks only the ratios of those programs; --write-baseline
-stores the measured ratios as the new baselines.
+stores the measured ratios as the new baselines. --filters prints, per program, the
+--benchmark_filter that runs just the benchmarks the ratios need: "PROGRAM REGEX" a line.
 """
 import argparse
 import json
 import os
+import re
 import statistics
 import sys
 
@@ -31,13 +34,23 @@ def median_metric(results, name, metric):
 
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
-    parser.add_argument("results")
+    parser.add_argument("results", nargs="?")
+    parser.add_argument("--filters", action="store_true", help="print each program's benchmark filter")
     parser.add_argument("--pinned", default=os.path.join(os.path.dirname(__file__), "..", "bench", "pinned_ratios.json"))
     parser.add_argument("--programs", help="only the ratios of these programs (comma-separated)")
     parser.add_argument("--write-baseline", action="store_true")
     args = parser.parse_args()
     with open(args.pinned) as f:
         pinned = json.load(f)
+    if args.filters:
+        names = {}
+        for ratio in pinned["ratios"]:
+            names.setdefault(ratio["program"], set()).update((ratio["numerator"], ratio["denominator"]))
+        for program, wanted in names.items():
+            print(program, "^(" + "|".join(re.escape(n) for n in sorted(wanted)) + ")$")
+        return 0
+    if args.results is None:
+        parser.error("RESULTS_DIR is required")
     loaded = {}
     regressed = []
     wanted = set(args.programs.split(",")) if args.programs else None

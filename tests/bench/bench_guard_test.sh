@@ -8,7 +8,8 @@ set -uo pipefail
 render_bench=$1 source=$2 work=$3
 mkdir -p "$work"
 NUT_BENCH_SLOWDOWN=4 "$render_bench" --benchmark_min_time=0.05 --benchmark_repetitions=3 --benchmark_enable_random_interleaving=true \
-  --benchmark_filter='^Render/(embree|nut_heuristic)/' --benchmark_out="$work/render_bench.json" \
+  --benchmark_filter="$(python3 "$source/scripts/bench_ratios.py" --filters | sed -n 's/^render_bench //p')" \
+  --benchmark_out="$work/render_bench.json" \
   --benchmark_out_format=json >/dev/null 2>"$work/render_bench.log" || { echo "FAIL: render_bench did not run"; cat "$work/render_bench.log"; exit 1; }
 python3 "$source/scripts/bench_ratios.py" "$work" --programs render_bench >"$work/ratios.txt" 2>"$work/errors.txt"
 status=$?
