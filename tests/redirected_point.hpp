@@ -1,7 +1,8 @@
-// Test helper: following a redirection as docs/FORMAT.md defines it, for tests that look points up
+// Test helpers: following a redirection as docs/FORMAT.md defines it, for tests that look points up
 // through a hierarchy by hand (an independent check of what the renderers do).
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstddef>
@@ -10,6 +11,7 @@
 #include <glm/vec3.hpp>
 
 #include <nut/hierarchy.hpp>
+#include <nut/solids.hpp>
 
 namespace nut::testing {
 
@@ -25,6 +27,26 @@ inline glm::dvec3 redirectedPoint(const Hierarchy& h, const Block& b, const std:
   for (int a = 0; a < 3; ++a)
     if (r.wrap[static_cast<std::size_t>(a)]) q[a] -= std::floor(q[a] / size[a]) * size[a];
   return q;
+}
+
+// What point p (block-local metres) of block `id` holds, followed through its redirections: the
+// material of the solid it is inside, or -1.
+inline int contentAt(const Hierarchy& h, BlockId id, const glm::dvec3& p) {
+  const Block& b = h.blocks[id];
+  std::array<int, 3> c{};
+  glm::dvec3 unit;
+  for (int a = 0; a < 3; ++a) {
+    const auto& bounds = b.boundsM[static_cast<std::size_t>(a)];
+    if (p[a] < 0 || p[a] >= bounds.back()) return -1;
+    c[static_cast<std::size_t>(a)] = static_cast<int>(std::upper_bound(bounds.begin(), bounds.end(), p[a]) - bounds.begin()) - 1;
+    const double lo = bounds[static_cast<std::size_t>(c[static_cast<std::size_t>(a)])];
+    unit[a] = (p[a] - lo) / (bounds[static_cast<std::size_t>(c[static_cast<std::size_t>(a)] + 1)] - lo);
+  }
+  const Cell& cell = b.cell(c[0], c[1], c[2]);
+  if (cell.kind == CellKind::Solid) return solidContains(cell.solid, unit) ? cell.material : -1;
+  if (cell.kind == CellKind::Empty) return -1;
+  const Redirection& r = b.redirections[cell.redirection];
+  return contentAt(h, r.target, redirectedPoint(h, b, c, r, p));
 }
 
 }  // namespace nut::testing

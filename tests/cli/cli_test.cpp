@@ -22,6 +22,7 @@
 #include <nut/camera.hpp>
 #include <nut/heat_map.hpp>
 #include <nut/hni.hpp>
+#include <nut/image_compare.hpp>
 #include <nut/png_io.hpp>
 #include <nut/raycast.hpp>
 #include <scene/city.hpp>
@@ -435,6 +436,64 @@ TEST(CityCli, GridLayoutIsASquareOfLotsAndTheReportCountsTheCity) {
   EXPECT_GT(report.at("buildings_per_second").get<double>(), 0.0);
   // Boxes of at least 4 x 6 x 4 m: twelve triangles a building at the very least.
   EXPECT_GE(report.at("grammar_mesh").at("triangles").get<std::size_t>(), 25u * 12u);
+}
+
+// --mix grammar,converted takes the converted samples in turn with the grammars, each building
+// its own stretched HNI; --pack-atlases writes the same city as district HNIs. Each district
+// validates, they are smaller than the buildings' PNGs together, the buildings' PNGs are gone, and
+// the packed city renders as the city of single buildings: the buildings placed by the manifest
+// (an independent placement) against the buildings placed inside the districts' root blocks.
+TEST(CityCli, AMixedCityPackedIntoDistrictsRendersAsItsBuildings) {
+  const std::string single = out("city-mixed") + "/city", packed = out("city-packed") + "/city";
+  for (const char* dir : {"city-mixed", "city-packed"}) fs::remove_all(out(dir));
+  const std::string args = " --count 36 --seed 2 --layout grid --mix grammar,converted --quiet --report ";
+  CliRun r = nut("city --out " + single + args + out("city-mixed") + "/report.json");
+  ASSERT_EQ(r.exitCode, 0) << r.stderrText;
+  r = nut("city --out " + packed + args + out("city-packed") + "/report.json --pack-atlases");
+  ASSERT_EQ(r.exitCode, 0) << r.stderrText;
+
+  const nlohmann::json report = nlohmann::json::parse(testing::fileText(out("city-packed") + "/report.json"));
+  for (const char* name : {"house", "residential", "highrise", "marvie_building", "pga_random_windows"})
+    EXPECT_GE(report.at("sources").value(name, 0), 5) << name;
+  EXPECT_GT(report.at("converted_mesh").at("triangles").get<std::size_t>(), 0u);
+  auto buildings = scene::loadScene(single + "/city.json", {});
+  ASSERT_TRUE(buildings) << buildings.error().message;
+  ASSERT_EQ(buildings->hnis.size(), 36u);
+  std::set<std::size_t> distinct;
+  for (const scene::PlacedHni& hni : buildings->hnis)
+    distinct.insert(std::hash<std::string_view>{}(std::string_view(
+        reinterpret_cast<const char*>(hni.image->pixels.data()), hni.image->pixels.size())));
+  EXPECT_EQ(distinct.size(), 36u) << "every building its own HNI";
+
+  auto districts = scene::readCityJson(packed + "/city.json");
+  ASSERT_TRUE(districts) << districts.error().message;
+  EXPECT_LT(districts->buildings.size(), 36u);
+  std::size_t pngBytes = 0;
+  for (const scene::CityBuilding& d : districts->buildings) {
+    auto png = readPng(packed + "/" + d.hni);
+    ASSERT_TRUE(png) << png.error().message;
+    EXPECT_TRUE(validate(png->image).ok()) << d.hni;
+    pngBytes += fs::file_size(packed + "/" + d.hni);
+  }
+  EXPECT_FALSE(fs::exists(packed + "/b00000.png"));
+  EXPECT_EQ(report.at("districts").at("png_bytes").get<std::size_t>(), pngBytes);
+  EXPECT_LT(pngBytes, report.at("png_bytes").get<std::size_t>());
+  EXPECT_GT(report.at("districts").at("merged_blocks").get<std::size_t>(), 0u);
+
+  const std::string view = " --size 480x270 --eye -40,60,-60 --target 90,5,90";
+  for (const std::string& city : {single, packed}) {
+    r = nut("render " + city + "/city.json -o " + city + ".png" + view);
+    ASSERT_EQ(r.exitCode, 0) << r.stderrText;
+  }
+  auto a = readPng(single + ".png", PngKind::Render), b = readPng(packed + ".png", PngKind::Render);
+  ASSERT_TRUE(a && b);
+  auto diff = compareImages(a->image, b->image, 8);
+  ASSERT_TRUE(diff) << diff.error().message;
+  // Positions in the districts are whole millimetres: a window edge may move by a pixel.
+  EXPECT_LT(diff->differingPct, 0.1);
+  if (diff->differingPct >= 0.1) {
+    EXPECT_TRUE(writePng(out("city-packed") + "/diff.png", diff->diff));
+  }
 }
 
 // A misspelt command is named, with the commands there are, on one line.

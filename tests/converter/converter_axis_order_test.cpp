@@ -19,25 +19,7 @@
 namespace nut::converter {
 namespace {
 
-// What point p (block-local metres) of block `id` holds: the material of the solid it is inside,
-// or -1.
-int contentAt(const Hierarchy& h, BlockId id, const glm::dvec3& p) {
-  const Block& b = h.blocks[id];
-  std::array<int, 3> c{};
-  glm::dvec3 unit;
-  for (int a = 0; a < 3; ++a) {
-    const auto& bounds = b.boundsM[static_cast<std::size_t>(a)];
-    if (p[a] < 0 || p[a] >= bounds.back()) return -1;
-    c[static_cast<std::size_t>(a)] = static_cast<int>(std::upper_bound(bounds.begin(), bounds.end(), p[a]) - bounds.begin()) - 1;
-    const double lo = bounds[static_cast<std::size_t>(c[static_cast<std::size_t>(a)])];
-    unit[a] = (p[a] - lo) / (bounds[static_cast<std::size_t>(c[static_cast<std::size_t>(a)] + 1)] - lo);
-  }
-  const Cell& cell = b.cell(c[0], c[1], c[2]);
-  if (cell.kind == CellKind::Solid) return solidContains(cell.solid, unit) ? cell.material : -1;
-  if (cell.kind == CellKind::Empty) return -1;
-  const Redirection& r = b.redirections[cell.redirection];
-  return contentAt(h, r.target, testing::redirectedPoint(h, b, c, r, p));
-}
+using testing::contentAt;
 
 // Cells of uneven millimetre widths holding every kind of solid in random orientations, and cells
 // redirecting to block 0 (a small target of solids) turned by random cube rotations, shifted,

@@ -51,20 +51,22 @@ void writeCity(std::size_t count = kBuildings) {
   if (fs::exists(cityDir(count) / "city.json")) return;
   fs::create_directories(cityDir(count));
   std::vector<grammar::Grammar> grammars;
+  std::vector<glm::dvec3> sizes;
   for (const char* name : {"marvie_building", "pga_complex_house", "pga_random_rule", "pga_random_windows"}) {
     auto g = grammar::readGrammar(std::string(NUT_SOURCE_DIR) + "/samples/grammars/" + name + ".grammar");
     ASSERT_TRUE(g) << g.error().message;
+    sizes.push_back(*g->size);
     grammars.push_back(std::move(*g));
   }
   scene::CityManifest city{"city", {}};
-  const auto plan = grammar::planCity(grammars, count, 3);
+  const auto plan = grammar::planCity(sizes, count, 3);
   for (std::size_t i = 0; i < plan.size(); ++i) {
-    auto built = grammar::buildCityBuilding(grammars[plan[i].grammar], plan[i]);
+    auto built = grammar::buildCityBuilding(grammars[plan[i].source], plan[i]);
     ASSERT_TRUE(built) << built.error().message;
     std::string name = "b";
     name += std::to_string(i);  // not "b" + to_string: gcc 12's false -Wrestrict
     ASSERT_TRUE(writeHni((cityDir(count) / (name + ".png")).string(), built->compiled.image, {name}, PngEffort::Quick));
-    city.buildings.push_back({name, name + ".png", "", built->positionM, built->yawDeg, built->boundsM});
+    city.buildings.push_back({name, name + ".png", "", built->placement.positionM, built->placement.yawDeg, built->placement.boundsM});
   }
   ASSERT_TRUE(scene::writeCityJson((cityDir(count) / "city.json").string(), city));
 }

@@ -37,19 +37,19 @@ double rowCentreZ(int row) {
 
 }  // namespace
 
-std::vector<PlannedBuilding> planCity(const std::vector<Grammar>& grammars, std::size_t count, std::uint64_t seed,
-                                      CityLayout layout) {
+std::vector<PlannedBuilding> planCity(const std::vector<glm::dvec3>& sourceSizesM, std::size_t count,
+                                      std::uint64_t seed, CityLayout layout) {
   std::vector<PlannedBuilding> plan;
-  if (grammars.empty()) return plan;
+  if (sourceSizesM.empty()) return plan;
   std::mt19937_64 random(seed);
   const auto lotsPerGridRow = static_cast<std::size_t>(std::ceil(std::sqrt(static_cast<double>(count))));
   int row = 0;
   double along = 0;
   for (std::size_t i = 0; i < count; ++i) {
     PlannedBuilding b;
-    b.grammar = i % grammars.size();
+    b.source = i % sourceSizesM.size();
     b.seed = random();
-    b.sizeM = drawSize(grammars[b.grammar].size.value_or(glm::dvec3(10.0)), random);
+    b.sizeM = drawSize(sourceSizesM[b.source], random);
     if (layout == CityLayout::Grid) {
       const std::size_t column = i % lotsPerGridRow;
       row = static_cast<int>(i / lotsPerGridRow);
@@ -88,16 +88,20 @@ Result<CityBuilding> buildCityBuilding(const Grammar& g, const PlannedBuilding& 
   if (!compiled) return compiled.error();
   CityBuilding out;
   out.compiled = std::move(*compiled);
-  out.yawDeg = plan.yawDeg;
-  // The root block's box, centred on the lot: world = position + Yaw * local, and a turn of 0 or
-  // 180 degrees about y maps the box's centre (S / 2) to (+-S.x / 2, S.y / 2, +-S.z / 2).
-  // The size as encoded (whole millimetres), which is what a renderer of the HNI places.
   glm::dvec3 size = out.compiled.hierarchy.blocks[out.compiled.hierarchy.root].sizeM();
   for (int a = 0; a < 3; ++a) size[a] = snapToUnits(size[a]);
+  out.placement = placeOnLot(size, out.compiled.originM.y, plan);
+  return out;
+}
+
+LotPlacement placeOnLot(const glm::dvec3& rootSizeM, double groundY, const PlannedBuilding& plan) {
+  // The root block's box, centred on the lot: world = position + Yaw * local, and a turn of 0 or
+  // 180 degrees about y maps the box's centre (S / 2) to (+-S.x / 2, S.y / 2, +-S.z / 2).
+  LotPlacement out;
+  out.yawDeg = plan.yawDeg;
   const double sign = plan.yawDeg == 0.0 ? 1.0 : -1.0;
-  out.positionM = {plan.lotCentreM.x - sign * size.x / 2, out.compiled.originM.y,
-                   plan.lotCentreM.y - sign * size.z / 2};
-  const glm::dvec3 farCorner = out.positionM + glm::dvec3(sign * size.x, size.y, sign * size.z);
+  out.positionM = {plan.lotCentreM.x - sign * rootSizeM.x / 2, groundY, plan.lotCentreM.y - sign * rootSizeM.z / 2};
+  const glm::dvec3 farCorner = out.positionM + glm::dvec3(sign * rootSizeM.x, rootSizeM.y, sign * rootSizeM.z);
   out.boundsM = {glm::min(out.positionM, farCorner), glm::max(out.positionM, farCorner)};
   return out;
 }

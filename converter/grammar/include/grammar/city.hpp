@@ -1,6 +1,6 @@
-// grammar/city.hpp — cities of distinct buildings from building grammars (`nut city`,
-// docs/CITY.md): which grammar, seed and start scope each building gets, on which lot of which
-// street it stands, and the building compiled and placed there.
+// grammar/city.hpp — cities of distinct buildings (`nut city`, docs/CITY.md): which source (a
+// building grammar, or a converted sample) each building comes from, with which seed and size, on
+// which lot of which street it stands, and a grammar's building compiled and placed there.
 #pragma once
 
 #include <cstdint>
@@ -17,10 +17,11 @@
 
 namespace nut::grammar {
 
-// A building of the plan: grammars[grammar] derived with `seed` from a start scope of `sizeM`,
-// centred on its lot and turned by yawDeg (0 or 180: its front towards its street).
+// A building of the plan: source `source` (a grammar derived with `seed` from a start scope of
+// `sizeM`, or a sample stretched to `sizeM`), centred on its lot and turned by yawDeg (0 or 180:
+// its front towards its street).
 struct PlannedBuilding {
-  std::size_t grammar = 0;
+  std::size_t source = 0;
   std::uint64_t seed = 0;
   glm::dvec3 sizeM{0.0};
   glm::dvec2 lotCentreM{0.0};  // on the ground: world x, z
@@ -37,20 +38,27 @@ enum class CityLayout {
   Grid,
 };
 
-// Each grammar's start scope (its @size, which it must have) is scaled per building by 0.8 to
-// 1.25 in width and depth and 0.7 to 1.6 in height; grammars are taken in turn. Deterministic in
-// (grammars' sizes, count, seed, layout); the layout changes where buildings stand, not what they are.
-std::vector<PlannedBuilding> planCity(const std::vector<Grammar>& grammars, std::size_t count, std::uint64_t seed,
-                                      CityLayout layout = CityLayout::Streets);
+// Each source's size (a grammar's @size, which it must have) is scaled per building by 0.8 to
+// 1.25 in width and depth and 0.7 to 1.6 in height; sources are taken in turn. Deterministic in
+// (sources' sizes, count, seed, layout); the layout changes where buildings stand, not what they are.
+std::vector<PlannedBuilding> planCity(const std::vector<glm::dvec3>& sourceSizesM, std::size_t count,
+                                      std::uint64_t seed, CityLayout layout = CityLayout::Streets);
+
+// Where a building whose root block is rootSizeM (whole millimetres) stands on its lot: centred
+// on it, turned by the plan's yaw, its root's origin at height groundY.
+struct LotPlacement {
+  glm::dvec3 positionM{0.0};  // world position of the root block's origin
+  double yawDeg = 0;
+  WorldBox boundsM;           // of the placed root block
+};
+LotPlacement placeOnLot(const glm::dvec3& rootSizeM, double groundY, const PlannedBuilding& plan);
 
 // A planned building compiled (with compileGrammar's lod), and where its root block's origin
 // stands in the world. A start scope the grammar cannot fill (parts that do not fit) is redrawn
 // from the building's seed, up to 8 times, and then the grammar's own @size is used.
 struct CityBuilding {
   CompiledGrammar compiled;
-  glm::dvec3 positionM{0.0};
-  double yawDeg = 0;
-  WorldBox boundsM;  // of the placed root block
+  LotPlacement placement;
 };
 Result<CityBuilding> buildCityBuilding(const Grammar& g, const PlannedBuilding& plan,
                                        const std::optional<LodMeasureOptions>& lod = std::nullopt);

@@ -1,0 +1,47 @@
+// converter/district.hpp — neighbouring buildings as one hierarchy: a root block over their ground
+// plan whose cells redirect to each building where it stands, over the buildings' blocks merged,
+// equal blocks stored once. `nut city --pack-atlases` writes a district as one HNI this way
+// (docs/CITY.md, "Districts"): one file and one atlas rectangle instead of one per building, and a
+// block that many buildings share (a window, a storey) is stored once.
+#pragma once
+
+#include <cstddef>
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+#include <nut/camera.hpp>
+#include <nut/error.hpp>
+#include <nut/hierarchy.hpp>
+
+namespace nut::converter {
+
+// A building as a city manifest places it (docs/CITY.md): its root block's origin at positionM,
+// turned by yawDeg about +y through it.
+struct PlacedHierarchy {
+  const Hierarchy* hierarchy = nullptr;
+  glm::dvec3 positionM{0.0};
+  double yawDeg = 0;
+};
+
+struct District {
+  Hierarchy hierarchy;
+  glm::dvec3 originM{0.0};  // world position of the root block's minimum corner
+  WorldBox boundsM;         // of the root block
+  std::size_t buildingBlocks = 0;  // the buildings' blocks before merging
+  std::size_t mergedBlocks = 0;    // of them, equal to a block stored already
+};
+
+// The root spans the buildings' world boxes; its cell boundaries are their sides, so that no cell
+// meets two buildings, and the cells a building's box covers redirect to its root, turned by its
+// yaw (a cube rotation for multiples of 90 degrees, the format's yaw otherwise). Positions are
+// taken to the millimetre, as the format stores them. The root is split where the format's
+// per-axis limits need it (assemble.hpp). Errors: no buildings, two buildings whose boxes overlap
+// on the ground, and whatever checkHierarchy finds in a building; each names the building by its
+// index.
+Result<District> mergeDistrict(const std::vector<PlacedHierarchy>& buildings);
+
+// The world box of h's root block placed at positionM and turned by yawDeg about +y through it.
+WorldBox placedRootBox(const Hierarchy& h, const glm::dvec3& positionM, double yawDeg);
+
+}  // namespace nut::converter
