@@ -1,12 +1,15 @@
 #!/usr/bin/env bash
-# scripts/bench-quick.sh BUILD [OUT]: make bench-quick, about 2 minutes on 2 cores.
+# scripts/bench-quick.sh BUILD [OUT]: make bench-quick, about 3 minutes on 2 cores.
 #  1. Every Google Benchmark program of the build once per case (one iteration; the slowest cases
 #     left out): the harness runs. city_scaling_bench and gl_lookup_bench have their own drivers
 #     (scripts/city-scaling.sh, docs/BENCHMARKS.md) and run under make bench only.
-#  2. The programs behind the pinned ratios again, with repetitions, and the guard:
-#     scripts/bench_ratios.py against the baselines of bench/pinned_ratios.json. Exit 1 when a
-#     ratio fell past its margin.
-# Results: OUT/smoke/*.json and OUT/*.json (default out/bench-quick).
+#  2. The run-time-against-error sweep at 320x180 with fewer settings (scripts/pareto-sweep.py
+#     --quick): every scene on both casters.
+#  3. Size against peers on one input of each kind (scripts/size-peers.py --quick).
+#  4. The programs behind the pinned ratios again, with repetitions, and the guard
+#     (scripts/pinned-ratios.sh): scripts/bench_ratios.py against the baselines of
+#     bench/pinned_ratios.json. Exit 1 when a ratio fell past its margin.
+# Results: OUT/smoke/*.json, OUT/pareto/ and OUT/*.json (default out/bench-quick).
 set -euo pipefail
 build=${1:-build}
 out=${2:-out/bench-quick}
@@ -26,11 +29,13 @@ for program in packer_bench lookup_bench grammar_bench render_bench load_bench s
     { cat "$out/smoke/$program.log" >&2; echo "bench-quick: $program failed" >&2; exit 1; }
 done
 
-# Each program behind a pinned ratio, filtered to the benchmarks its ratios need.
-python3 "$root/scripts/bench_ratios.py" --filters | while read -r program filter; do
-  echo "bench-quick: $program, 5 repetitions" >&2
-  "$build/bench/$program" --benchmark_min_time=0.05 --benchmark_repetitions=5 --benchmark_enable_random_interleaving=true \
-    --benchmark_filter="$filter" --benchmark_out="$out/$program.json" --benchmark_out_format=json \
-    >"$out/$program.log" 2>&1 || { cat "$out/$program.log" >&2; echo "bench-quick: $program failed" >&2; exit 1; }
-done
-python3 "$root/scripts/bench_ratios.py" "$out"
+# The run-time-against-error sweep on tiny frames: every scene and back-end still runs.
+echo "bench-quick: run time against error (scripts/pareto-sweep.py --quick)" >&2
+python3 "$root/scripts/pareto-sweep.py" "$build" "$out/pareto" "$out/pareto/plots" --quick
+
+# Size against peers on one input of each kind (gltfpack, draco_encoder).
+echo "bench-quick: size against peers (scripts/size-peers.py --quick)" >&2
+python3 "$root/scripts/size-peers.py" "$build" "$out/sizes" --quick
+
+# The pinned ratios and their guard, last: the exit status of make bench-quick.
+"$root/scripts/pinned-ratios.sh" "$build" "$out"

@@ -4,15 +4,12 @@
 # shape-grammar system emits), each packed the way a user would ship it: gltfpack -cc (the
 # meshoptimizer project's packer, from npm) and gzip -9.
 #   scripts/grammar-sizes.sh [BUILD]        (BUILD: the build folder, default build)
-# Installs gltfpack into .tools/ with npm on first use.
+# gltfpack comes from scripts/install-deps.sh (npm, into .tools/).
 set -euo pipefail
 build=${1:-build}
 root=$(cd "$(dirname "$0")/.." && pwd)
 gltfpack="$root/.tools/node_modules/.bin/gltfpack"
-if [ ! -x "$gltfpack" ]; then
-  echo "grammar-sizes: installing gltfpack 1.3.0 into .tools/ (npm)" >&2
-  npm install --silent --prefix "$root/.tools" gltfpack@1.3.0 >/dev/null
-fi
+[ -x "$gltfpack" ] || { echo "grammar-sizes: $gltfpack is missing: run scripts/install-deps.sh" >&2; exit 2; }
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 echo "| sample | shapes | blocks | HNI raw | HNI PNG | solid: triangles | OBJ + MTL | gltfpack -cc | + gzip -9 | fronts: triangles | gltfpack -cc + gzip -9 | PNG / fronts |"

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Installs every system dependency of nut from Debian 12 packages, and the npm packages of the
-# browser tests into .tools/.
+# browser tests and the benchmark report into .tools/.
 # Idempotent: when everything is already installed it prints nothing and exits 0.
 set -euo pipefail
 
@@ -19,17 +19,18 @@ packages=(
   libopenmesh-dev libcgal-dev libgmp-dev libmpfr-dev libmeshoptimizer-dev
   # tests, fuzzing and benchmarks
   libgtest-dev libbenchmark-dev libstb-dev clang-14 libclang-rt-14-dev
-  # plots of the benchmark reports (docs/BENCHMARKS.md)
-  gnuplot-nox
+  # the benchmark report (docs/BENCHMARKS.md): plots, and Draco's encoder as a size peer
+  gnuplot-nox draco
   # the city manifest checked against its JSON Schema (docs/CITY.md)
   python3-jsonschema
   # the browser viewer's tests (docs/WEB.md): headless Chromium, driven from Node.js
   chromium nodejs npm
 )
 
-# npm packages, pinned, into .tools/ (ignored by git): puppeteer-core drives the system Chromium.
-# Version 24 is the last that runs on Node.js 20.
-npm_packages=(puppeteer-core@24.43.1)
+# npm packages, pinned, into .tools/ (ignored by git): puppeteer-core drives the system Chromium in
+# the web viewer's tests (version 24 is the last that runs on Node.js 20); gltfpack (meshoptimizer's
+# packer) is the size peer of the benchmark report.
+npm_packages=(puppeteer-core@24.43.1 gltfpack@1.3.0)
 root="$(cd "$(dirname "$0")/.." && pwd)"
 
 missing=()
