@@ -1,0 +1,221 @@
+#!/usr/bin/env python3
+"""The tables of docs/BENCHMARKS.md's generated sections, from one `make bench` run.
+
+bench_tables.py RESULTS_DIR
+
+Reads the Google Benchmark JSON files RESULTS_DIR/PROGRAM.json that scripts/bench.sh writes
+(each case repeated, repetitions interleaved) and writes RESULTS_DIR/sections/NAME.md, one per
+section: lookups, raycast, scene, gl, packing, load, convert, grammar, winding. A value is the
+median of a case's repetitions; "spread" is (max - min) / median over them. A ratio is taken
+between medians of the same run. scripts/bench_report.py puts the sections into the report.
+"""
+import json
+import os
+import statistics
+import sys
+
+
+class Results:
+    def __init__(self, path):
+        with open(path) as f:
+            data = json.load(f)
+        self.runs = {}
+        self.labels = {}
+        for b in data.get("benchmarks", []):
+            if b.get("run_type", "iteration") != "iteration":
+                continue
+            name = b.get("run_name", b["name"])
+            self.runs.setdefault(name, []).append(b)
+            if b.get("label"):
+                self.labels[name] = b["label"]
+
+    def has(self, name):
+        return name in self.runs
+
+    def values(self, name, metric):
+        return [b[metric] for b in self.runs[name] if metric in b]
+
+    def median(self, name, metric="real_time"):
+        return statistics.median(self.values(name, metric))
+
+    def spread(self, name, metric="real_time"):
+        v = self.values(name, metric)
+        return (max(v) - min(v)) / statistics.median(v) if len(v) > 1 and statistics.median(v) else 0.0
+
+
+def pct(x):
+    return f"{100 * x:.1f} %"
+
+
+def lookups(r):
+    sizes = [4, 8, 16, 32, 64]
+    methods = ["native", "heuristic", "exact", "binary"]
+    out = ["ns per lookup (`per_lookup`), median of the repetitions:\n",
+           "| method | " + " | ".join(f"n = {n}" for n in sizes) + " | spread |",
+           "|---|" + "---|" * (len(sizes) + 1)]
+    for m in methods:
+        cells = [f"{1e9 * r.median(f'BM_Lookup/{m}/{n}', 'per_lookup'):.2f}" for n in sizes]
+        spread = max(r.spread(f"BM_Lookup/{m}/{n}", "per_lookup") for n in sizes)
+        out.append(f"| {m} | " + " | ".join(cells) + f" | {pct(spread)} |")
+    out += ["", "| ratio | " + " | ".join(f"n = {n}" for n in sizes) + " | target |",
+            "|---|" + "---|" * (len(sizes) + 1)]
+    targets = {"heuristic": "at most 1.3", "exact": "at most 1.6", "binary": "(paper: 16 at 32 x 32)"}
+    for m in methods[1:]:
+        cells = [f"{r.median(f'BM_Lookup/{m}/{n}', 'per_lookup') / r.median(f'BM_Lookup/native/{n}', 'per_lookup'):.2f}"
+                 for n in sizes]
+        out.append(f"| {m} / native | " + " | ".join(cells) + f" | {targets[m]} |")
+    wrong = [100 * r.median(f"BM_Lookup/heuristic/{n}", "wrong_cells") for n in sizes]
+    out.append(f"\nHeuristic answers that are the neighbour of the exact cell (`wrong_cells`): "
+               f"{min(wrong):.3f} to {max(wrong):.3f} % of per-axis lookups.")
+    return out
+
+
+def raycast(r):
+    out = ["1280 x 720, one thread for both, the default camera of each sample:\n",
+           "| sample | Embree (rtcIntersect1), Mrays/s | NUT heuristic | NUT exact | NUT exact / Embree | "
+           "NUT heuristic / Embree | spread |",
+           "|---|---|---|---|---|---|---|"]
+    for sample in ("facade", "building", "solids"):
+        names = {k: f"Render/{k}/{sample}/real_time" for k in ("embree", "nut_heuristic", "nut_exact")}
+        rays = {k: r.median(n, "items_per_second") / 1e6 for k, n in names.items()}
+        spread = max(r.spread(n, "items_per_second") for n in names.values())
+        out.append(f"| {sample} | {rays['embree']:.2f} | {rays['nut_heuristic']:.2f} | {rays['nut_exact']:.2f} "
+                   f"| {rays['nut_exact'] / rays['embree']:.2f} | {rays['nut_heuristic'] / rays['embree']:.2f} "
+                   f"| {pct(spread)} |")
+    out.append("\nTarget (issue 37): NUT at least 1.5 times Embree's rays per second on every building. "
+               "Embree's packet and stream paths are not measured yet.")
+    return out
+
+
+def scene(r):
+    out = ["| view | ground grid, ms | Mrays/s | every HNI, ms | Mrays/s | every HNI / ground grid |",
+           "|---|---|---|---|---|---|"]
+    for view in ("above", "street"):
+        grid, every = f"City1600/ground_grid/{view}/real_time", f"City1600/every_hni/{view}/real_time"
+        out.append(f"| {view} | {r.median(grid):.1f} | {r.median(grid, 'items_per_second') / 1e6:.2f} "
+                   f"| {r.median(every):.0f} | {r.median(every, 'items_per_second') / 1e6:.2f} "
+                   f"| {r.median(every) / r.median(grid):.0f}x |")
+    return out
+
+
+def gl(r):
+    rows = [("GLSL ray caster, heuristic lookup, OSMesa", "glFrame/gl_raycast/osmesa/real_time"),
+            ("GLSL ray caster, exact lookup, OSMesa", "glFrame/gl_raycast_exact/osmesa/real_time"),
+            ("GLSL ray caster, heuristic lookup, EGL", "glFrame/gl_raycast/egl/real_time"),
+            ("GLSL ray caster, exact lookup, EGL", "glFrame/gl_raycast_exact/egl/real_time"),
+            ("CPU ray caster (all cores)", "cpu_raycast/real_time"),
+            ("GL mesh raster, OSMesa", "glFrame/gl_mesh_raster/osmesa/real_time"),
+            ("GL mesh raster, EGL", "glFrame/gl_mesh_raster/egl/real_time"),
+            ("Embree on the exported mesh (all cores)", "embree_mesh/real_time")]
+    cpu = r.median("cpu_raycast/real_time")
+    out = ["| renderer | GL renderer | ms per frame | Mrays/s | CPU caster's time / this |", "|---|---|---|---|---|"]
+    for label, name in rows:
+        if not r.has(name):
+            out.append(f"| {label} | not run | | | |")
+            continue
+        out.append(f"| {label} | {r.labels.get(name, '—')} | {r.median(name):.1f} "
+                   f"| {r.median(name, 'items_per_second') / 1e6:.2f} | {cpu / r.median(name):.2f} |")
+    gpu = any("llvmpipe" not in r.labels.get(n, "llvmpipe") for _, n in rows)
+    out.append("\nGPU columns: " + ("the EGL rows ran on the GPU named." if gpu else
+                                    "none in this run. EGL found no GPU and fell back to llvmpipe."))
+    return out
+
+
+def packing(r):
+    out = ["| packer | HNIs | ms | waste (mean) | waste (max) |", "|---|---|---|---|---|"]
+    names = [("MaxRects best-area-fit, online width search", "BM_MaxRectsOnlineBAF"),
+             ("MaxRects best-area-fit, global batch", "BM_MaxRectsGlobalBAF"),
+             ("stb_rect_pack skyline, bottom-left", "BM_StbSkylineBL"),
+             ("stb_rect_pack skyline, best-fit", "BM_StbSkylineBF")]
+    for label, family in names:
+        for n in (40, 100, 200):
+            name = f"{family}/{n}"
+            if r.has(name):
+                out.append(f"| {label} | {n} | {r.median(name):.2f} | {r.median(name, 'waste_pct'):.2f} % "
+                           f"| {r.median(name, 'waste_max_pct'):.2f} % |")
+    return out
+
+
+def load(r):
+    stages = ["read_png", "validate", "decode", "content_bounds", "export_coarse_mesh", "prepare_caster"]
+    out = ["ms per stage:\n", "| sample | " + " | ".join(stages) + " |", "|---|" + "---|" * len(stages)]
+    for sample in ("building", "facade", "solids"):
+        out.append(f"| {sample} | " + " | ".join(f"{r.median(f'Load/{s}/{sample}'):.3f}" for s in stages) + " |")
+    return out
+
+
+def convert(r):
+    out = ["| sample | triangles | 1 thread, ms | triangles/s | all cores, ms | triangles/s |", "|---|---|---|---|---|---|"]
+    for sample in ("highrise", "street", "residential", "house", "carpark"):
+        one, all_ = f"convert/{sample}/1/real_time", f"convert/{sample}/0/real_time"
+        if r.has(one):
+            out.append(f"| {sample} | {r.median(one, 'triangles'):,.0f} | {r.median(one):.0f} "
+                       f"| {r.median(one, 'items_per_second') / 1e3:.0f} k | {r.median(all_):.0f} "
+                       f"| {r.median(all_, 'items_per_second') / 1e3:.0f} k |")
+    out += ["", "Time, size and fidelity against `--tolerance` (`convertAtTolerance`):\n",
+            "| sample | tolerance (mm) | ms | HNI bytes | pixels within 8/255 of the source |", "|---|---|---|---|---|"]
+    for sample in ("highrise", "street", "residential", "house", "carpark"):
+        for mm in (5, 10, 20, 50):
+            name = f"convertAtTolerance/{sample}/{mm}/real_time"
+            if r.has(name):
+                out.append(f"| {sample} | {mm} | {r.median(name):.0f} | {r.median(name, 'hni_bytes'):,.0f} "
+                           f"| {r.median(name, 'within_8_pct'):.2f} % |")
+    for label, name in (("Reading the high-rise's OBJ", "readObj/highrise/real_time"),
+                        ("Encoding its HNI (Zopfli)", "encodeHni/highrise/real_time")):
+        if r.has(name):
+            out.append(f"\n{label}: {r.median(name):.0f} ms.")
+    return out
+
+
+def grammar(r):
+    out = ["| step | sample | µs | per second | PNG bytes |", "|---|---|---|---|---|"]
+    for name in sorted(r.runs):
+        step, sample = name.split("/")[:2]
+        png = r.median(name, "png_bytes") if r.values(name, "png_bytes") else None
+        out.append(f"| {step.replace('BM_', '')} | {sample} | {r.median(name):.0f} "
+                   f"| {r.median(name, 'items_per_second'):.0f} | {'' if png is None else f'{png:,.0f}'} |")
+    return out
+
+
+def winding(r):
+    out = ["| case | triangles | µs per query | mean error | max error | sign flips |", "|---|---|---|---|---|---|"]
+    for name in sorted(r.runs):
+        if name.startswith("query/"):
+            out.append(f"| {name} | {r.median(name, 'triangles'):,.0f} | {1e6 / r.median(name, 'items_per_second'):.2f} "
+                       f"| {r.median(name, 'mean_error'):.2g} | {r.median(name, 'max_error'):.2g} "
+                       f"| {r.median(name, 'flips'):.0f} |")
+    for name in sorted(r.runs):
+        if name.startswith("build/"):
+            out.append(f"\nBuilding the tree for {name.split('/')[1]}: {r.median(name):.1f} ms.")
+    return out
+
+
+SECTIONS = {
+    "lookups": ("lookup_bench", lookups),
+    "raycast": ("render_bench", raycast),
+    "scene": ("scene_bench", scene),
+    "gl": ("gl_bench", gl),
+    "packing": ("packer_bench", packing),
+    "load": ("load_bench", load),
+    "convert": ("convert_bench", convert),
+    "grammar": ("grammar_bench", grammar),
+    "winding": ("winding_bench", winding),
+}
+
+
+def main():
+    if len(sys.argv) != 2:
+        sys.exit(__doc__)
+    results = sys.argv[1]
+    os.makedirs(os.path.join(results, "sections"), exist_ok=True)
+    for section, (program, table) in SECTIONS.items():
+        path = os.path.join(results, program + ".json")
+        if not os.path.exists(path):
+            sys.exit(f"bench_tables: {path} is missing")
+        with open(os.path.join(results, "sections", section + ".md"), "w") as f:
+            f.write("\n".join(table(Results(path))) + "\n")
+    print(f"bench_tables: {len(SECTIONS)} sections in {results}/sections", file=sys.stderr)
+
+
+if __name__ == "__main__":
+    main()
