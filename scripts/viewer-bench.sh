@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Frame time of a streamed city (docs/BENCHMARKS.md, "Streaming viewer frame time"): a generated
+# Frame time of a streamed city (docs/PERFORMANCE.md, "Streaming viewer frame time"): a generated
 # city of 225 buildings (the NUT paper's smallest) at 1280x720 from an overview and a street-level
 # camera, on the CPU caster (`nut render`, all cores, median of three) and on the GL caster
 # (`nut-viewer --headless`, median of ten frames of the settled view), and a flight of 120 frames

@@ -241,7 +241,7 @@ Result<packer::Layout> pack(const std::vector<packer::Item>& items, const Compil
   packOptions.reserved = std::span<const packer::Rect>(&fileRecord, 1);
   // Best-area-fit first, then best-short-side-fit and bottom-left where they pack tighter: shared
   // records and one-pixel metadata items leave fewer small rectangles to fill gaps, and the other
-  // rules recover what that costs (docs/BENCHMARKS.md, packing).
+  // rules recover what that costs (docs/PERFORMANCE.md, "HNI packing waste").
   const auto search = [&](packer::Options attempt) {
     std::optional<packer::Layout> best;
     for (packer::Heuristic rule :

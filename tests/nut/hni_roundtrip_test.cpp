@@ -112,7 +112,7 @@ TEST(HniRoundTrip, HeuristicErrorWithinBoundOnEveryBoundaryExactErrorZero) {
 }
 
 // Paper 4.4: with many blocks the width search wastes little. Target: at most 1 % mean for
-// hierarchies of 40+ blocks; the figure goes to docs/BENCHMARKS.md.
+// hierarchies of 40+ blocks; the figure goes to docs/PERFORMANCE.md.
 TEST(HniCompile, PackingWasteOfOneHundredHierarchiesOfFortyPlusBlocks) {
   testing::RandomHierarchyOptions options;
   options.minBlocks = 40;
