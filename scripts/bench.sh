@@ -32,16 +32,20 @@ python3 "$root/scripts/size-peers.py" "$build" "$out/sizes"
 step "city scaling"
 "$root/scripts/city-scaling.sh" "$build" "$out/scaling" "$root/docs/images/city-scaling.png" >"$out/scaling.md"
 
-step "pinned ratios"
 status=0
+step "stability"
+python3 "$root/scripts/stability-counts.py" "$build" "$out/stability" || status=$?
+
+step "pinned ratios"
 "$root/scripts/pinned-ratios.sh" "$build" "$out/ratios" >"$out/ratios.txt" || status=$?
 { echo '```'; cat "$out/ratios.txt"; echo '```'; } >"$out/pinned.md"
 
-sections=(pinned="$out/pinned.md" pareto="$out/pareto/pareto.md" sizes="$out/sizes/sizes.md" scaling="$out/scaling.md")
+sections=(pinned="$out/pinned.md" pareto="$out/pareto/pareto.md" sizes="$out/sizes/sizes.md" scaling="$out/scaling.md"
+          stability="$out/stability/stability.md")
 for name in lookups raycast scene gl packing convert grammar load winding; do
   sections+=("$name=$out/sections/$name.md")
 done
 python3 "$root/scripts/bench_report.py" "$root/docs/BENCHMARKS.md" "${sections[@]}"
 step "done"
-[ "$status" -eq 0 ] || echo "bench: a pinned ratio fell past its guard (above)" >&2
+[ "$status" -eq 0 ] || echo "bench: the stress suite, the fuzz run or a pinned ratio failed (above)" >&2
 exit "$status"

@@ -24,6 +24,8 @@ import subprocess
 import sys
 
 SOURCE = os.path.normpath(os.path.join(os.path.dirname(__file__), ".."))
+# nut render's defaults: the exact lookup at full detail, FXAA off.
+DEFAULT = {"lookup": "exact", "lod": "0", "max_iter": 512, "fxaa": False}
 CITY_VIEWS = {  # bench/city_scaling_bench.cpp's cameras
     "street": ["--eye", "4,1.7,64", "--target", "200,8,64", "--fov", "50"],
     "above": ["--eye", "-120,250,-120", "--target", "260,0,260", "--fov", "50"],
@@ -63,17 +65,19 @@ class Sweep:
         return scenes[:3] + scenes[4:] if self.quick else scenes
 
     def settings(self, backend, footprints):
+        """CPU: both lookups at every level of detail, and lower iteration caps. GL, whose frames
+        take seconds on llvmpipe: the exact lookup at fewer levels, the heuristic and FXAA at full
+        detail."""
         lods = ["0", "4", "16"] if self.quick or backend == "gl" else ["0", "1", "2", "4", "8", "16"]
         if footprints:
             lods.append("auto")
-        rows = []
-        for lookup in ("exact", "heuristic"):
-            for lod in lods:
-                rows.append({"lookup": lookup, "lod": lod, "max_iter": 512, "fxaa": False})
-        if backend == "cpu" and not self.quick:
-            rows += [{"lookup": "exact", "lod": "0", "max_iter": m, "fxaa": False} for m in (32, 64, 128)]
+        full = DEFAULT
         if backend == "gl":
-            rows += [{"lookup": "exact", "lod": lod, "fxaa": True, "max_iter": 512} for lod in ("0", "4")]
+            return ([dict(full, lod=lod) for lod in lods] + [dict(full, lookup="heuristic")]
+                    + [dict(full, fxaa=True)])
+        rows = [dict(full, lookup=lookup, lod=lod) for lookup in ("exact", "heuristic") for lod in lods]
+        if not self.quick:
+            rows += [dict(full, max_iter=m) for m in (32, 64, 128)]
         return rows
 
     def render(self, scene_input, camera, backend, setting, png):
@@ -98,8 +102,7 @@ class Sweep:
     def scene_rows(self, scene):
         name, kind, scene_input, camera, mesh, footprints = scene
         reference = f"{self.out}/{name}-reference.png"
-        self.render(scene_input, camera, "cpu", {"lookup": "exact", "lod": "0", "max_iter": 512, "fxaa": False},
-                    reference)
+        self.render(scene_input, camera, "cpu", DEFAULT, reference)
         mesh_png = None
         if mesh:
             mesh_png = f"{self.out}/{name}-mesh.png"
@@ -112,7 +115,7 @@ class Sweep:
                 row = dict(setting, scene=name, kind=kind, backend=backend, ms=1000 * seconds,
                            off_reference_pct=self.differing_pct(reference, png),
                            off_mesh_pct=self.differing_pct(mesh_png, png) if mesh_png else None)
-                row["default"] = setting == {"lookup": "exact", "lod": "0", "max_iter": 512, "fxaa": False}
+                row["default"] = setting == DEFAULT
                 rows.append(row)
                 print(f"pareto-sweep: {name} {backend} {label(row)}: {row['ms']:.1f} ms, "
                       f"{row['off_reference_pct']:.3f} % off", file=sys.stderr)
