@@ -32,8 +32,8 @@ for n in sizes:
 gl = rows[0][2]["gl"]
 mib = lambda b: b / 2**20
 print(f"Cities of `nut city --layout grid --seed 1`, {rows[0][2]['width']}x{rows[0][2]['height']}, GL: {gl}.\n")
-print("| buildings | generation (buildings/s) | NUT PNG | NUT texels | grammar meshes, indexed | exported meshes, indexed | exported meshes as drawn | memory ratio |")
-print("|---|---|---|---|---|---|---|---|")
+print("| buildings | generation (buildings/s) | NUT PNG | PNG per building | NUT texels | grammar meshes, indexed | exported meshes, indexed | exported meshes as drawn | memory ratio |")
+print("|---|---|---|---|---|---|---|---|---|")
 data = open(f"{out}/scaling.dat", "w")
 data.write("# buildings png texels grammar_indexed exported_indexed buffers nut_street nut_above mesh_street mesh_above "
            "nut_lod_street nut_lod_above\n")
@@ -43,7 +43,8 @@ for n, report, result in rows:
     buffers = mesh.get("buffer_bytes")
     drawn = f"{mib(buffers):,.0f} MiB" if buffers else "over the budget"
     ratio = min(grammar_indexed, mesh["indexed_bytes"]) / nut["png_bytes"]
-    print(f"| {n:,} | {report['buildings_per_second']:.0f} | {mib(nut['png_bytes']):.1f} MiB | {mib(nut['texel_bytes']):.1f} MiB "
+    print(f"| {n:,} | {report['buildings_per_second']:.0f} | {mib(nut['png_bytes']):.1f} MiB | {nut['png_bytes'] / n:,.0f} B "
+          f"| {mib(nut['texel_bytes']):.1f} MiB "
           f"| {mib(grammar_indexed):,.0f} MiB | {mib(mesh['indexed_bytes']):,.0f} MiB | {drawn} | {ratio:.0f}x |")
     views = lambda key: [result[key]["views"][v]["median_ms"] if key in result and "views" in result[key] else float("nan")
                          for v in ("street", "above")]
