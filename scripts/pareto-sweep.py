@@ -8,8 +8,9 @@ Scenes: the hand-built sample building, the converted house, the grammar house
 street and from above. Each scene is drawn by `nut render` on the CPU caster and on the GL caster
 (Mesa's llvmpipe unless GL_BACKEND=egl finds a GPU) with every setting of the sweep: the lookup
 (exact, heuristic), the level of detail (--lod-px 0 to 16, --lod auto where the HNI carries
-footprints), the iteration cap, and FXAA on GL. Each setting's time is the median of its frames
-(`--frames`, GL's first frame untimed); its error is the share of pixels more than 8/255 off the
+footprints), the iteration cap, and FXAA on GL. The settings of a scene are drawn in 3 rounds,
+each in a shuffled order; a setting's time is the median over the rounds of its frames' median
+(3 frames a round on the CPU, 2 on GL after an untimed first one: `nut render --frames`); its error is the share of pixels more than 8/255 off the
 full-detail exact CPU frame, and off the source mesh's render (Embree) where the scene has one.
 
 Writes OUT/pareto.json (every row), OUT/pareto.md (the report's section) and one plot per scene,
@@ -19,11 +20,15 @@ PLOTS/pareto-SCENE.png (gnuplot): time against error, the Pareto front joined, t
 import argparse
 import json
 import os
+import random
 import re
+import statistics
 import subprocess
 import sys
 
 SOURCE = os.path.normpath(os.path.join(os.path.dirname(__file__), ".."))
+# Rounds over each scene's settings; a setting draws its frames once a round.
+ROUNDS = 3
 # nut render's defaults: the exact lookup at full detail, FXAA off.
 DEFAULT = {"lookup": "exact", "lod": "0", "max_iter": 512, "fxaa": False}
 CITY_VIEWS = {  # bench/city_scaling_bench.cpp's cameras
@@ -109,10 +114,19 @@ class Sweep:
             run([self.nut, "render-mesh", mesh, "-o", mesh_png, "--size", self.size] + camera)
         rows = []
         for backend in ("cpu", "gl"):
-            for i, setting in enumerate(self.settings(backend, footprints)):
+            settings = self.settings(backend, footprints)
+            # Rounds over the settings in a shuffled order, a setting's time the median of its
+            # rounds: the machine's slow drift then falls on every setting alike.
+            times = [[] for _ in settings]
+            for round_index in range(1 if self.quick else ROUNDS):
+                order = list(range(len(settings)))
+                random.Random(round_index).shuffle(order)
+                for i in order:
+                    png = f"{self.out}/{name}-{backend}-{i}.png"
+                    times[i].append(self.render(scene_input, camera, backend, settings[i], png))
+            for i, setting in enumerate(settings):
                 png = f"{self.out}/{name}-{backend}-{i}.png"
-                seconds = self.render(scene_input, camera, backend, setting, png)
-                row = dict(setting, scene=name, kind=kind, backend=backend, ms=1000 * seconds,
+                row = dict(setting, scene=name, kind=kind, backend=backend, ms=1000 * statistics.median(times[i]),
                            off_reference_pct=self.differing_pct(reference, png),
                            off_mesh_pct=self.differing_pct(mesh_png, png) if mesh_png else None)
                 row["default"] = setting == DEFAULT
@@ -158,7 +172,7 @@ set multiplot layout 1,2 title "{title}, {size}: time against pixels more than 8
 set logscale y
 set format y "%g"
 set grid
-set key bottom left
+set key top right
 set ylabel "pixels off (%, 0 drawn at 1e-4)"
 do for [b=0:1] {{
   set title (b == 0 ? "CPU caster" : "GL caster")
