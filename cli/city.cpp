@@ -329,6 +329,8 @@ Result<PackedCity> packDistricts(const CityCliOptions& o, const scene::CityManif
 }
 
 int run(const CityCliOptions& o) {
+  if (!o.grammars.empty() && std::find(o.mix.begin(), o.mix.end(), "grammar") == o.mix.end())
+    return fail("--grammar: the grammars are a source of --mix grammar, which --mix leaves out", kUsage);
   std::error_code ec;
   fs::create_directories(o.out, ec);
   if (ec) return fail(o.out + ": cannot create folder (" + ec.message() + ")", kUnreadable);

@@ -400,6 +400,9 @@ TEST(CityCli, DistinctValidBuildingsOnLotsThatDoNotOverlap) {
                      1, "needs a mass");
   EXPECT_FALSE(fs::exists(out("city-d") + "/city.json"));
   expectOneErrorLine(nut("city --count 0 --out " + out("city-d")), 2, "--count");
+  expectOneErrorLine(nut("city --count 2 --out " + out("city-d") + " --mix converted --grammar " +
+                         source("samples/grammars/pga_simple_house.grammar")),
+                     2, "--grammar");
 }
 
 // --layout grid places the same buildings (the same PNG bytes as the streets layout of the seed) on
