@@ -24,8 +24,9 @@ def machine():
     except OSError:
         pass
     commit = subprocess.run(["git", "rev-parse", "--short", "HEAD"], capture_output=True, text=True).stdout.strip()
-    dirty = subprocess.run(["git", "status", "--porcelain", "--untracked-files=no"], capture_output=True,
-                           text=True).stdout.strip()
+    # The run writes the report and its plots under docs/ itself: changes elsewhere are the code's.
+    dirty = subprocess.run(["git", "status", "--porcelain", "--untracked-files=no", "--", ".", ":(exclude)docs"],
+                           capture_output=True, text=True).stdout.strip()
     return (f"*Measured on {datetime.date.today().isoformat()}: {model}, {os.cpu_count()} cores, "
             f"commit {commit or 'unknown'}{' with local changes' if dirty else ''}.*")
 
