@@ -28,7 +28,6 @@
 #include <nut/hni.hpp>
 #include <nut/lod.hpp>
 #include <nut/png_io.hpp>
-#include <nut/units.hpp>
 #include <scene/city.hpp>
 #include <scene/obj.hpp>
 
@@ -124,9 +123,7 @@ Result<Image> convertedBuilding(const CityCliOptions& o, const CitySource& sourc
     image = compile(*scaled);
   }
   if (!image) return Error{source.name + ": " + image.error().message};
-  glm::dvec3 size = scaled->blocks[scaled->root].sizeM();
-  for (int a = 0; a < 3; ++a) size[a] = snapToUnits(size[a]);
-  w.placement = grammar::placeOnLot(size, 0.0, plan);
+  w.placement = grammar::placeOnLot(scaled->blocks[scaled->root].sizeM(), 0.0, plan);
   w.meshTriangles = source.meshTriangles;
   w.meshVertices = source.meshVertices;
   return image;

@@ -88,20 +88,22 @@ Result<CityBuilding> buildCityBuilding(const Grammar& g, const PlannedBuilding& 
   if (!compiled) return compiled.error();
   CityBuilding out;
   out.compiled = std::move(*compiled);
-  glm::dvec3 size = out.compiled.hierarchy.blocks[out.compiled.hierarchy.root].sizeM();
-  for (int a = 0; a < 3; ++a) size[a] = snapToUnits(size[a]);
-  out.placement = placeOnLot(size, out.compiled.originM.y, plan);
+  out.placement = placeOnLot(out.compiled.hierarchy.blocks[out.compiled.hierarchy.root].sizeM(),
+                             out.compiled.originM.y, plan);
   return out;
 }
 
 LotPlacement placeOnLot(const glm::dvec3& rootSizeM, double groundY, const PlannedBuilding& plan) {
+  // The size as encoded (whole millimetres), which is what a renderer of the HNI places.
+  glm::dvec3 size = rootSizeM;
+  for (int a = 0; a < 3; ++a) size[a] = snapToUnits(size[a]);
   // The root block's box, centred on the lot: world = position + Yaw * local, and a turn of 0 or
   // 180 degrees about y maps the box's centre (S / 2) to (+-S.x / 2, S.y / 2, +-S.z / 2).
   LotPlacement out;
   out.yawDeg = plan.yawDeg;
   const double sign = plan.yawDeg == 0.0 ? 1.0 : -1.0;
-  out.positionM = {plan.lotCentreM.x - sign * rootSizeM.x / 2, groundY, plan.lotCentreM.y - sign * rootSizeM.z / 2};
-  const glm::dvec3 farCorner = out.positionM + glm::dvec3(sign * rootSizeM.x, rootSizeM.y, sign * rootSizeM.z);
+  out.positionM = {plan.lotCentreM.x - sign * size.x / 2, groundY, plan.lotCentreM.y - sign * size.z / 2};
+  const glm::dvec3 farCorner = out.positionM + glm::dvec3(sign * size.x, size.y, sign * size.z);
   out.boundsM = {glm::min(out.positionM, farCorner), glm::max(out.positionM, farCorner)};
   return out;
 }

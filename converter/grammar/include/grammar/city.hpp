@@ -44,8 +44,9 @@ enum class CityLayout {
 std::vector<PlannedBuilding> planCity(const std::vector<glm::dvec3>& sourceSizesM, std::size_t count,
                                       std::uint64_t seed, CityLayout layout = CityLayout::Streets);
 
-// Where a building whose root block is rootSizeM (whole millimetres) stands on its lot: centred
-// on it, turned by the plan's yaw, its root's origin at height groundY.
+// Where a building whose root block is rootSizeM stands on its lot: centred on it, turned by the
+// plan's yaw, its root's origin at height groundY. The size is taken to whole millimetres, as the
+// HNI stores it.
 struct LotPlacement {
   glm::dvec3 positionM{0.0};  // world position of the root block's origin
   double yawDeg = 0;
