@@ -10,7 +10,12 @@ out=${2:-out/bench}
 root="$(cd "$(dirname "$0")/.." && pwd)"
 mkdir -p "$out"
 start=$(date +%s)
-step() { echo "bench: $1 ($(( $(date +%s) - start )) s so far)" >&2; }
+: >"$out/steps.tsv"
+# Each step's start on stderr, and in OUT/steps.tsv for the report's "duration" block.
+step() {
+  echo "bench: $1 ($(( $(date +%s) - start )) s so far)" >&2
+  printf '%s\t%s\n' "$1" "$(( $(date +%s) - start ))" >>"$out/steps.tsv"
+}
 
 for program in lookup_bench render_bench scene_bench gl_bench packer_bench convert_bench grammar_bench load_bench \
                winding_bench; do
@@ -20,7 +25,9 @@ for program in lookup_bench render_bench scene_bench gl_bench packer_bench conve
   # tolerance sweep of the three larger samples seconds a case: the smaller cases show the same.
   [ "$program" = packer_bench ] && filter='-BM_MaxRectsGlobalBAF/(100|200)'
   [ "$program" = convert_bench ] && filter='-convertAtTolerance/(highrise|street|residential)'
-  "$build/bench/$program" --benchmark_repetitions=3 --benchmark_enable_random_interleaving=true \
+  # A quarter second a repetition (Google Benchmark's default is half): three interleaved
+  # repetitions and their spread say more than longer single ones, and the run fits its 20 minutes.
+  "$build/bench/$program" --benchmark_min_time=0.25 --benchmark_repetitions=3 --benchmark_enable_random_interleaving=true \
     --benchmark_filter="$filter" --benchmark_out="$out/$program.json" --benchmark_out_format=json >"$out/$program.log"
 done
 python3 "$root/scripts/bench_tables.py" "$out"
@@ -32,17 +39,28 @@ step "size against peers"
 python3 "$root/scripts/size-peers.py" "$build" "$out/sizes"
 
 step "city scaling"
-HOLD=${HOLD:-3} "$root/scripts/city-scaling.sh" "$build" "$out/scaling" "$root/docs/images/city-scaling.png" >"$out/scaling.md"
+HOLD=${HOLD:-3} HOLD_SECONDS=${HOLD_SECONDS:-10} "$root/scripts/city-scaling.sh" "$build" "$out/scaling" "$root/docs/images/city-scaling.png" >"$out/scaling.md"
 
 status=0
 step "stability"
-python3 "$root/scripts/stability-counts.py" "$build" "$out/stability" || status=$?
+FUZZ_SMOKE_SECONDS=${FUZZ_SMOKE_SECONDS:-15} FUZZ_SMOKE_OTHER_SECONDS=${FUZZ_SMOKE_OTHER_SECONDS:-5} \
+  python3 "$root/scripts/stability-counts.py" "$build" "$out/stability" || status=$?
 
 step "pinned ratios"
 "$root/scripts/pinned-ratios.sh" "$build" "$out/ratios" >"$out/ratios.txt" || status=$?
 { echo '```'; cat "$out/ratios.txt"; echo '```'; } >"$out/pinned.md"
 
-sections=(pinned="$out/pinned.md" pareto="$out/pareto/pareto.md" sizes="$out/sizes/sizes.md" scaling="$out/scaling.md"
+step "report"
+python3 - "$out/steps.tsv" >"$out/duration.md" <<'PY'
+import sys
+steps = [line.rstrip("\n").split("\t") for line in open(sys.argv[1])]
+starts = [int(t) for _, t in steps]
+parts = [(name, end - begin) for (name, _), begin, end in zip(steps, starts, starts[1:])]
+programs = sum(s for name, s in parts if name.endswith("_bench"))
+rest = ", ".join(f"{s} s for {name}" for name, s in parts if not name.endswith("_bench"))
+print(f"This run took {starts[-1]:,} s ({starts[-1] / 60:.1f} minutes): {programs} s for the benchmark programs, {rest}.")
+PY
+sections=(pinned="$out/pinned.md" duration="$out/duration.md" pareto="$out/pareto/pareto.md" sizes="$out/sizes/sizes.md" scaling="$out/scaling.md"
           stability="$out/stability/stability.md")
 for name in lookups raycast scene gl packing convert grammar load winding; do
   sections+=("$name=$out/sections/$name.md")

@@ -7,7 +7,8 @@
 # table on stdout and a plot (PNG, gnuplot).
 #   scripts/city-scaling.sh [BUILD] [OUT] [PLOT]
 #   (defaults: build, out/city-scaling, OUT/city-scaling.png; SIZES="225 900 2116 8464",
-#    GL_BACKEND=osmesa, HOLD=5 timed frames a view, MESH_BUDGET_MB=12288 of mesh vertex buffers)
+#    GL_BACKEND=osmesa, HOLD=5 timed frames a view or fewer once they pass HOLD_SECONDS (0: no cap),
+#    MESH_BUDGET_MB=12288 of mesh vertex buffers)
 set -euo pipefail
 build=${1:-build}
 out=${2:-out/city-scaling}
@@ -19,7 +20,7 @@ for n in $sizes; do
   rm -rf "$out/city$n"
   "$build/cli/nut" city --count "$n" --out "$out/city$n" --seed 1 --layout grid --report "$out/city$n-report.json"
   "$build/bench/city_scaling_bench" "$out/city$n/city.json" --out "$out/city$n-result.json" \
-    --screenshots "$out/shots$n" --gl "${GL_BACKEND:-osmesa}" --hold "${HOLD:-5}" --mesh-budget-mb "${MESH_BUDGET_MB:-12288}"
+    --screenshots "$out/shots$n" --gl "${GL_BACKEND:-osmesa}" --hold "${HOLD:-5}" --hold-seconds "${HOLD_SECONDS:-0}" --mesh-budget-mb "${MESH_BUDGET_MB:-12288}"
 done
 python3 - "$out" "$sizes" <<'PY'
 import json, sys

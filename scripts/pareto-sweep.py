@@ -10,8 +10,9 @@ street and from above. Each scene is drawn by `nut render` on the CPU caster and
 (exact, heuristic), the level of detail (--lod-px 0 to 16, --lod auto where the HNI carries
 footprints), the iteration cap, and FXAA on GL. The settings of a scene are drawn in 3 rounds,
 each in a shuffled order; a setting's time is the median over the rounds of its frames' median
-(3 frames a round on the CPU, 2 on GL after an untimed first one: `nut render --frames`); its error is the share of pixels more than 8/255 off the
-full-detail exact CPU frame, and off the source mesh's render (Embree) where the scene has one.
+(3 frames a round on the CPU; on GL one, after an untimed first frame that compiles the shaders:
+`nut render --frames`); its error is the share of pixels more than 8/255 off the full-detail
+exact CPU frame, and off the source mesh's render (Embree) where the scene has one.
 
 Writes OUT/pareto.json (every row), OUT/pareto.md (the report's section) and one plot per scene,
 PLOTS/pareto-SCENE.png (gnuplot): time against error, the Pareto front joined, the default ringed.
@@ -88,7 +89,7 @@ class Sweep:
     def render(self, scene_input, camera, backend, setting, png):
         args = [self.nut, "render", scene_input, "-o", png, "--size", self.size, "--backend", backend,
                 "--lookup", setting["lookup"], "--max-iter", str(setting["max_iter"]),
-                "--frames", "1" if self.quick else ("3" if backend == "cpu" else "2"),
+                "--frames", "3" if backend == "cpu" and not self.quick else "1",
                 "--stats", png + ".json"] + camera
         args += ["--lod", "auto"] if setting["lod"] == "auto" else ["--lod-px", setting["lod"]]
         if backend == "gl":

@@ -139,6 +139,19 @@ TEST(EmbreeRenderer, TranslucentFacesCompositeOnceEach) {
     EXPECT_NEAR(h.distanceM, 5.0, 1e-4);  // the opaque wall
     EXPECT_EQ(h.colour, expected);
   }
+  // Every ray mode composites the glass the same way: a packet's lane goes on one ray at a time.
+  Camera camera;
+  camera.eye = {0.3, 0.2, 6.0};
+  camera.width = 37, camera.height = 29;
+  camera.fovYDeg = 45;
+  const MeshRenderOutput single = renderer->render(camera, 1);
+  const std::uint8_t* centre = single.colour.at(18, 14);
+  EXPECT_NE((std::array<std::uint8_t, 3>{centre[0], centre[1], centre[2]}), kBackground);
+  for (const auto rays : {EmbreeRays::Packet8, EmbreeRays::Packet16, EmbreeRays::Stream}) {
+    const MeshRenderOutput other = renderer->render(camera, 2, nullptr, rays);
+    EXPECT_EQ(other.colour, single.colour) << static_cast<int>(rays);
+    EXPECT_EQ(other.distanceM, single.distanceM) << static_cast<int>(rays);
+  }
   // Away from both: background.
   const MeshHit sky = renderer->trace(glm::dvec3(0.0, 0.0, 5.0), glm::dvec3(0.0, 0.0, 1.0));
   EXPECT_FALSE(sky.hit);

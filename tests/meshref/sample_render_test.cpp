@@ -148,6 +148,36 @@ TEST_P(SampleRender, ContentBoundsAreTheCoarseMeshVertexBoundsToTheBit) {
   }
 }
 
+TEST_P(SampleRender, EmbreePacketsAndStreamsGiveTheOneRayImage) {
+  // The peer of the speed comparison is the fastest of Embree's ray modes, so each must draw the
+  // same picture as one ray at a time: at a size that is no multiple of the packet or the tile,
+  // from the default camera and from a close-up, at one and two threads.
+  const std::string name = GetParam();
+  auto sample = loadSample(name);
+  ASSERT_TRUE(sample.ok()) << sample.error().message;
+  auto mesh = exportMesh(sample->hierarchy, sample->png.text.originM);
+  ASSERT_TRUE(mesh.ok()) << mesh.error().message;
+  auto embree = meshref::EmbreeRenderer::create(*mesh);
+  ASSERT_TRUE(embree.ok()) << embree.error().message;
+  Camera close = fitCamera(embree->bounds(), 203, 117);
+  close.eye = close.target + 0.3 * (close.eye - close.target);
+  for (const Camera& camera : {fitCamera(embree->bounds(), 203, 117), close}) {
+    const meshref::MeshRenderOutput single = embree->render(camera, 1);
+    for (const auto rays : {meshref::EmbreeRays::Packet8, meshref::EmbreeRays::Packet16, meshref::EmbreeRays::Stream})
+      for (const int threads : {1, 2}) {
+        const meshref::MeshRenderOutput other = embree->render(camera, threads, nullptr, rays);
+        const bool same = other.colour == single.colour && other.distanceM == single.distanceM;
+        const std::string stem = (outputDir() / (name + ".rays" + std::to_string(static_cast<int>(rays)))).string();
+        if (!same) {
+          (void)writePng(stem + ".single.png", single.colour);
+          (void)writePng(stem + ".other.png", other.colour);
+        }
+        EXPECT_TRUE(same) << name << ", ray mode " << static_cast<int>(rays) << ", " << threads << " threads: see "
+                          << stem << ".*.png";
+      }
+  }
+}
+
 INSTANTIATE_TEST_SUITE_P(Samples, SampleRender, ::testing::Values("facade", "building", "solids", "rotations"));
 
 }  // namespace

@@ -37,6 +37,16 @@ struct MeshRenderStats {
 // Translucent faces a ray composites at most; behind them it sees the background.
 inline constexpr int kMaxTranslucentLayers = 64;
 
+// How render() hands the primary rays to Embree. Every mode gives the same hits (Embree's robust
+// triangle test is the same code at every width); what differs is how much traversal the rays
+// of neighbouring pixels share. A ray that passes a translucent face goes on one ray at a time.
+enum class EmbreeRays {
+  Single,    // rtcIntersect1 per pixel
+  Packet8,   // rtcIntersect8 on 4x2 pixel blocks
+  Packet16,  // rtcIntersect16 on 4x4 pixel blocks
+  Stream,    // rtcIntersect1M on each 16x16 tile, flagged coherent
+};
+
 class EmbreeRenderer final : public scene::MeshTracer {
  public:
   // Builds the Embree scene once (a robust BVH over the mesh; Embree's builder uses all cores).
@@ -57,7 +67,8 @@ class EmbreeRenderer final : public scene::MeshTracer {
 
   // Renders every pixel of the camera's image with `threads` threads (0 = all cores), in 16x16
   // tiles handed out in order; the output does not depend on the thread count.
-  MeshRenderOutput render(const Camera& camera, int threads = 0, MeshRenderStats* stats = nullptr) const;
+  MeshRenderOutput render(const Camera& camera, int threads = 0, MeshRenderStats* stats = nullptr,
+                          EmbreeRays rays = EmbreeRays::Single) const;
 
   // Seconds create() spent building the scene.
   double buildSeconds() const;

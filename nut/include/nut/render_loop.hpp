@@ -30,19 +30,19 @@ struct Composite {
   }
 };
 
-// Calls pixel(x, y) for every pixel of a width x height image from `threads` threads (0 = all
-// cores), handing out 16x16 tiles in order. Each pixel is computed once by one thread, so the
-// output does not depend on the thread count. Returns the number of threads used.
-template <typename PixelFunction>
-int forEachPixelInTiles(int width, int height, int threads, const PixelFunction& pixel) {
-  constexpr int kTile = 16;
-  const int tilesX = (width + kTile - 1) / kTile, tilesY = (height + kTile - 1) / kTile;
+// Calls tile(x0, y0, x1, y1) for every 16x16 tile of a width x height image (the last row and
+// column clipped: pixels x0 <= x < x1, y0 <= y < y1) from `threads` threads (0 = all cores),
+// handing the tiles out in order. Each tile is drawn once by one thread, so the output does not
+// depend on the thread count. Returns the number of threads used.
+inline constexpr int kRenderTile = 16;
+template <typename TileFunction>
+int forEachTile(int width, int height, int threads, const TileFunction& tile) {
+  const int tilesX = (width + kRenderTile - 1) / kRenderTile, tilesY = (height + kRenderTile - 1) / kRenderTile;
   std::atomic<int> nextTile{0};
   const auto work = [&] {
-    for (int tile = nextTile++; tile < tilesX * tilesY; tile = nextTile++) {
-      const int x0 = tile % tilesX * kTile, y0 = tile / tilesX * kTile;
-      for (int y = y0; y < std::min(y0 + kTile, height); ++y)
-        for (int x = x0; x < std::min(x0 + kTile, width); ++x) pixel(x, y);
+    for (int t = nextTile++; t < tilesX * tilesY; t = nextTile++) {
+      const int x0 = t % tilesX * kRenderTile, y0 = t / tilesX * kRenderTile;
+      tile(x0, y0, std::min(x0 + kRenderTile, width), std::min(y0 + kRenderTile, height));
     }
   };
   const int count = threads > 0 ? threads : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
@@ -51,6 +51,15 @@ int forEachPixelInTiles(int width, int height, int threads, const PixelFunction&
   work();
   for (std::thread& th : pool) th.join();
   return count;
+}
+
+// forEachTile, calling pixel(x, y) for each pixel of each tile, row by row.
+template <typename PixelFunction>
+int forEachPixelInTiles(int width, int height, int threads, const PixelFunction& pixel) {
+  return forEachTile(width, height, threads, [&](int x0, int y0, int x1, int y1) {
+    for (int y = y0; y < y1; ++y)
+      for (int x = x0; x < x1; ++x) pixel(x, y);
+  });
 }
 
 }  // namespace nut
