@@ -152,6 +152,16 @@ def packing(r):
             if r.has(name):
                 out.append(f"| {label} | {n} | {r.median(name):.2f} | {r.median(name, 'waste_pct'):.2f} % "
                            f"| {r.median(name, 'waste_max_pct'):.2f} % |")
+    out += ["", "In an atlas: the 2,116 HNIs of a city placed one at a time, in streaming order, into 2048 x 2048 "
+            "pages (`bench/data/city_hni_sizes.txt`):\n",
+            "| packer | ms | HNIs/s | pages | waste | spread |", "|---|---|---|---|---|---|"]
+    for label, name in [("MaxRects bottom-left (the viewer's)", "BM_AtlasMaxRectsBL"),
+                        ("MaxRects best-area-fit", "BM_AtlasMaxRectsBAF"),
+                        ("stb_rect_pack skyline, bottom-left", "BM_AtlasStbSkylineBL"),
+                        ("stb_rect_pack skyline, best-fit", "BM_AtlasStbSkylineBF")]:
+        if r.has(name):
+            out.append(f"| {label} | {r.median(name):.2f} | {r.median(name, 'items_per_second') / 1e3:,.0f} k "
+                       f"| {r.median(name, 'pages'):.0f} | {r.median(name, 'waste_pct'):.1f} % | {pct(r.spread(name))} |")
     return out
 
 
