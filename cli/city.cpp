@@ -135,6 +135,8 @@ WrittenBuilding writeBuilding(const CityCliOptions& o, const std::vector<CitySou
   WrittenBuilding w;
   plan.seed += seedOffset;
   const CitySource& source = sources[plan.source];
+  // A converted sample varies by its size alone: a retry draws its height again.
+  if (seedOffset > 0 && !source.grammar) plan.sizeM.y = grammar::redrawHeight(source.sizeM.y, plan.seed);
   HniText text;
   text.name = buildingName(i);
   text.generator = "nut city";

@@ -12,10 +12,12 @@
 #include <glm/geometric.hpp>
 #include <glm/vec2.hpp>
 
+#include <grammar/city.hpp>
 #include <grammar/compile.hpp>
 #include <nut/hni.hpp>
 #include <nut/png_encode.hpp>
 #include <nut/raycast.hpp>
+#include <nut/units.hpp>
 
 #include "grammar_samples.hpp"
 
@@ -334,6 +336,22 @@ TEST(GrammarCompile, DerivationErrorsNameTheRule) {
     EXPECT_NE(message.find(c.message), std::string::npos) << message;
     EXPECT_EQ(message.find('\n'), std::string::npos) << "one line";
   }
+}
+
+TEST(CityPlan, RedrawnHeightsSpreadOverThePlansRange) {
+  // nut city's retry of a converted building that repeats an earlier one's pixels rests on this:
+  // the next seeds give other heights, within the 0.7 to 1.6 times the plan draws.
+  std::set<double> heights;
+  for (std::uint64_t seed = 1; seed <= 200; ++seed) {
+    const double h = redrawHeight(10.0, seed);
+    EXPECT_GE(h, 7.0);
+    EXPECT_LE(h, 16.0);
+    heights.insert(snapToUnits(h));  // to the millimetre, as the HNI stores it
+    EXPECT_NE(snapToUnits(h), snapToUnits(redrawHeight(10.0, seed + 1))) << seed;
+  }
+  // 200 draws from 9,000 millimetres: about 2 repeat by chance.
+  EXPECT_GE(heights.size(), 190u);
+  EXPECT_EQ(redrawHeight(10.0, 7), redrawHeight(10.0, 7));
 }
 
 }  // namespace

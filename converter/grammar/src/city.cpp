@@ -70,6 +70,11 @@ std::vector<PlannedBuilding> planCity(const std::vector<glm::dvec3>& sourceSizes
   return plan;
 }
 
+double redrawHeight(double sourceHeightM, std::uint64_t seed) {
+  std::mt19937_64 random(seed);
+  return drawSize({1.0, sourceHeightM, 1.0}, random).y;
+}
+
 Result<CityBuilding> buildCityBuilding(const Grammar& g, const PlannedBuilding& plan,
                                        const std::optional<LodMeasureOptions>& lod) {
   DeriveOptions options;

@@ -44,6 +44,11 @@ enum class CityLayout {
 std::vector<PlannedBuilding> planCity(const std::vector<glm::dvec3>& sourceSizesM, std::size_t count,
                                       std::uint64_t seed, CityLayout layout = CityLayout::Streets);
 
+// The height planCity draws for a building of a source sourceSizeM tall, drawn again from `seed`.
+// A retry varies with it a building whose only variation is its size (a converted sample): the
+// width and depth stay, so the building still fits its lot.
+double redrawHeight(double sourceHeightM, std::uint64_t seed);
+
 // Where a building whose root block is rootSizeM stands on its lot: centred on it, turned by the
 // plan's yaw, its root's origin at height groundY. The size is taken to whole millimetres, as the
 // HNI stores it.
