@@ -6,7 +6,8 @@
 #   make bench-quick   every benchmark once on small inputs, then the pinned ratios against their
 #               baselines (bench/pinned_ratios.json): fails when one fell past its margin
 #   make fuzz   run one libFuzzer target longer: make fuzz TARGET=obj_fuzz FUZZ_SECONDS=600
-#               (targets: hni_fuzz, the default, obj_fuzz, city_fuzz, render_fuzz, grammar_fuzz; docs/INPUT.md)
+#               (targets: hni_fuzz, the default, obj_fuzz, glb_fuzz, city_fuzz, render_fuzz, grammar_fuzz;
+#               docs/INPUT.md)
 #   make core-check   build the core alone (optional modules off) and check what it links
 #   make test-sanitize   build the whole suite with AddressSanitizer + UBSan and run it
 #   make test-thread     build the tests of the parallel code with ThreadSanitizer and run them
@@ -19,14 +20,15 @@ JOBS ?= $(shell nproc)
 FUZZ_SECONDS ?= 600
 TARGET ?= hni_fuzz
 # make test's fuzz run: hni_fuzz for FUZZ_SMOKE_SECONDS, each other target for
-# FUZZ_SMOKE_OTHER_SECONDS: 30 + 4 x 10 = 70 s in all.
+# FUZZ_SMOKE_OTHER_SECONDS: 30 + 5 x 10 = 80 s in all.
 FUZZ_SMOKE_SECONDS ?= 30
 FUZZ_SMOKE_OTHER_SECONDS ?= 10
-FUZZ_TARGETS = hni_fuzz obj_fuzz city_fuzz render_fuzz grammar_fuzz
+FUZZ_TARGETS = hni_fuzz obj_fuzz glb_fuzz city_fuzz render_fuzz grammar_fuzz
 # Per target: dictionary and input size cap (the OBJ seeds reach 50 KB).
 FUZZ_FLAGS_obj_fuzz = -dict=tests/fuzz/obj.dict -max_len=65536
 FUZZ_FLAGS_city_fuzz = -dict=tests/fuzz/city.dict
 FUZZ_FLAGS_grammar_fuzz = -dict=tests/fuzz/grammar.dict
+FUZZ_FLAGS_glb_fuzz = -dict=tests/fuzz/glb.dict
 # $(call fuzz-run,TARGET,SECONDS): the target over its generated seeds (where it writes what it
 # finds), its hand-made inputs and its regressions; a unit running over 10 s counts as a hang.
 fuzz-run = $(FUZZ_BUILD)/tests/$(1) -max_total_time=$(2) -timeout=10 -print_final_stats=1 $(FUZZ_FLAGS_$(1)) \

@@ -1,6 +1,6 @@
-// `nut render-mesh IN.obj -o OUT.png`: renders an OBJ mesh with the Embree reference renderer, or
-// rasterises it with OpenGL (`--backend gl`), with the same camera flags and default camera as
-// `nut render`, so the images compare.
+// `nut render-mesh IN.obj -o OUT.png`: renders an OBJ or GLB mesh with the Embree reference
+// renderer, or rasterises it with OpenGL (`--backend gl`), with the same camera flags and default
+// camera as `nut render`, so the images compare.
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -12,7 +12,7 @@
 
 #include <meshref/embree_renderer.hpp>
 #include <nut/png_io.hpp>
-#include <scene/obj.hpp>
+#include <scene/mesh_file.hpp>
 
 #include "camera_options.hpp"
 #include "commands.hpp"
@@ -72,7 +72,7 @@ int runGl(const RenderMeshOptions& o, const TriangleMesh& mesh) {
 
 int run(const RenderMeshOptions& o) {
   std::vector<std::string> warnings;
-  auto mesh = scene::readObjMesh(o.input, warnings);
+  auto mesh = scene::readMeshFile(o.input, warnings);
   if (!mesh) {
     // A file that opens but does not hold a usable mesh is invalid input, not unreadable.
     std::error_code ec;
@@ -111,8 +111,8 @@ int run(const RenderMeshOptions& o) {
 void addRenderMeshCommand(CLI::App& app, int& exitCode) {
   auto o = std::make_shared<RenderMeshOptions>();
   CLI::App* cmd =
-      app.add_subcommand("render-mesh", "Render an OBJ mesh with the reference renderer (Embree) or OpenGL");
-  cmd->add_option("input", o->input, "Mesh (OBJ; materials from the MTL files it names: Kd colour, d opacity)")
+      app.add_subcommand("render-mesh", "Render an OBJ or GLB mesh with the reference renderer (Embree) or OpenGL");
+  cmd->add_option("input", o->input, "Mesh: OBJ (materials from the MTL files it names: Kd colour, d opacity) or binary glTF (.glb: base colour factors)")
       ->required();
   cmd->add_option("-o,--output", o->output, "Output image (PNG)")->required()->check(outputExtension(".png", "PNG"));
   o->camera.addTo(*cmd);

@@ -13,7 +13,7 @@
 #include <nut/hni.hpp>
 #include <nut/mesh_export.hpp>
 #include <scene/city.hpp>
-#include <scene/obj.hpp>
+#include <scene/mesh_file.hpp>
 
 namespace nut::scene {
 
@@ -82,7 +82,7 @@ class Loader {
   }
 
   Status addMesh(const std::string& path) {
-    auto mesh = readObjMesh(path, scene_.warnings);
+    auto mesh = readMeshFile(path, scene_.warnings);
     if (!mesh) return fail(mesh.error().message);
     const WorldBox box = mesh->bounds();
     include(scene_.bounds, box.min);

@@ -69,6 +69,15 @@ TEST(FuzzCorpus, ObjSeedsAndMutationsRunClean) {
   runMutations(objInput, handMade, 0, 100);
 }
 
+TEST(FuzzCorpus, GlbSeedsAndMutationsRunClean) {
+  std::vector<SeedInput> seeds = glbSeeds();
+  EXPECT_GE(seeds.size(), 1u);  // gltfpack's cube is found
+  const std::vector<SeedInput> regressions = committed("glb_fuzz");
+  seeds.insert(seeds.end(), regressions.begin(), regressions.end());
+  runAll(glbInput, seeds);
+  runMutations(glbInput, seeds, 0, 2000);
+}
+
 TEST(FuzzCorpus, GrammarSeedsAndMutationsRunClean) {
   const std::vector<SeedInput> seeds = grammarSeeds();
   EXPECT_GE(seeds.size(), 4u);  // the samples are found

@@ -68,6 +68,13 @@ std::vector<SeedInput> objSeeds() {
   return seeds;
 }
 
+std::vector<SeedInput> glbSeeds() {
+  std::vector<SeedInput> seeds;
+  for (const fs::path& path : filesIn(kSourceDir / "tests/data"))
+    if (path.extension() == ".glb") seeds.push_back({path.filename().string(), bytesOf(fileText(path))});
+  return seeds;
+}
+
 std::vector<SeedInput> citySeeds() {
   scene::CityManifest city{"street", {}};
   city.buildings.push_back({"house", "house.png", "house.complement.obj", {12.5, 0, -3.25}, 90});

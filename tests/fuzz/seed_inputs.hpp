@@ -24,6 +24,9 @@ Result<std::vector<SeedInput>> hniSeeds();
 // obj_fuzz: every OBJ of samples/obj/ and tests/data/, whole, framed with its MTL (obj_input.hpp).
 std::vector<SeedInput> objSeeds();
 
+// glb_fuzz: every .glb of tests/data/ (gltfpack's output).
+std::vector<SeedInput> glbSeeds();
+
 // city_fuzz: a manifest as the writer (scene::cityJson) makes it, with and without complements.
 std::vector<SeedInput> citySeeds();
 

@@ -1,5 +1,5 @@
 // `fuzz_seeds DIR`: writes every fuzz target's generated seeds (seed_inputs.hpp) as a libFuzzer
-// corpus, one folder per target: DIR/hni_fuzz, DIR/render_fuzz, DIR/obj_fuzz, DIR/city_fuzz, DIR/grammar_fuzz.
+// corpus, one folder per target: DIR/hni_fuzz, DIR/render_fuzz, DIR/obj_fuzz, DIR/glb_fuzz, DIR/city_fuzz, DIR/grammar_fuzz.
 // Seeds over kMaxSeedBytes (the larger sample OBJs) are left to the plain corpus test: libFuzzer
 // mutates small inputs faster, and the Makefile caps obj_fuzz inputs at that size.
 #include <cstdio>
@@ -43,6 +43,7 @@ int main(int argc, char** argv) {
   }
   const bool ok = writeSeeds(dir / "hni_fuzz", *hni) && writeSeeds(dir / "render_fuzz", *hni) &&
                   writeSeeds(dir / "obj_fuzz", nut::fuzz::objSeeds()) &&
+                  writeSeeds(dir / "glb_fuzz", nut::fuzz::glbSeeds()) &&
                   writeSeeds(dir / "city_fuzz", nut::fuzz::citySeeds()) &&
                   writeSeeds(dir / "grammar_fuzz", nut::fuzz::grammarSeeds());
   return ok ? 0 : 1;

@@ -12,6 +12,8 @@ namespace nut::fuzz {
 int hniInput(const std::uint8_t* data, std::size_t size);
 // Bytes as an OBJ, with an optional MTL part, through the OBJ reader (obj_fuzz.cpp).
 int objInput(const std::uint8_t* data, std::size_t size);
+// Bytes as a binary glTF file through the GLB reader (glb_fuzz.cpp).
+int glbInput(const std::uint8_t* data, std::size_t size);
 // Bytes as a city.json through the manifest reader (city_fuzz.cpp).
 int cityInput(const std::uint8_t* data, std::size_t size);
 // Bytes as an HNI (frame.hpp) through validate and, when valid, the CPU ray caster (render_fuzz.cpp).

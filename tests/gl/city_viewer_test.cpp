@@ -26,6 +26,7 @@
 #include <nut/image_compare.hpp>
 #include <nut/png_io.hpp>
 #include <scene/city.hpp>
+#include <scene/obj.hpp>
 #include <scene/scene.hpp>
 #include <scene/scene_render.hpp>
 #include <viewer/city_renderer.hpp>
@@ -33,6 +34,7 @@
 #include <viewer/render_target.hpp>
 
 #include "gl_test_support.hpp"
+#include "../glb_bytes.hpp"
 
 namespace nut::viewer {
 namespace {
@@ -481,6 +483,29 @@ TEST_F(StreamedCity, ComplementaryMeshesAreDrawnWithTheirBuildings) {
   expectAgree("street-complements", cpu, gl.image, kMinWithinPct);
   // The meshes are part of the picture: the HNIs alone give another one.
   EXPECT_NE(scene::SceneRenderer(scene->hnis, nullptr).render(camera, cast).colour, gl.image);
+
+  // The same complements as binary glTF: the scene and the viewer read them by their extension.
+  scene::CityManifest glbCity = manifestAt(manifest);
+  for (scene::CityBuilding& b : glbCity.buildings) {
+    if (b.complement.empty()) continue;
+    std::vector<std::string> warnings;
+    auto mesh = scene::readObjMesh((dir / b.complement).string(), warnings);
+    ASSERT_TRUE(mesh) << mesh.error().message;
+    b.complement = fs::path(b.complement).replace_extension(".glb").string();
+    const std::vector<std::uint8_t> glb = testing::meshAsGlb(*mesh);
+    std::ofstream(dir / b.complement, std::ios::binary).write(reinterpret_cast<const char*>(glb.data()),
+                                                              static_cast<std::streamsize>(glb.size()));
+  }
+  const fs::path glbManifest = dir / "city-glb.json";
+  ASSERT_TRUE(scene::writeCityJson(glbManifest.string(), glbCity));
+  auto glbScene = scene::loadScene(glbManifest.string(), {});
+  ASSERT_TRUE(glbScene) << glbScene.error().message;
+  ASSERT_EQ(glbScene->meshes.size(), scene->meshes.size());
+  for (std::size_t m = 0; m < scene->meshes.size(); ++m)
+    EXPECT_EQ(glbScene->meshes[m].triangles.size(), scene->meshes[m].triangles.size());
+  const Streamed glbGl = stream(glbManifest, camera, {});
+  EXPECT_EQ(glbGl.stats.failed, 0u);
+  expectAgree("street-complements-glb", gl.image, glbGl.image, kMinWithinPct);
 }
 
 // Runs nut-viewer with `args`; its exit status.

@@ -9,6 +9,8 @@
 
 #include <nut/hni.hpp>
 #include <nut/png_io.hpp>
+#include <scene/glb.hpp>
+#include <scene/mesh_file.hpp>
 #include <scene/obj.hpp>
 
 namespace nut::viewer {
@@ -59,12 +61,16 @@ std::size_t CityLoader::outstanding() const {
   return outstanding_;
 }
 
-// A complementary mesh through the same fetch as the HNIs: the OBJ, and the MTL files it names
-// beside it (a missing MTL is the reader's warning, not an error).
+// A complementary mesh through the same fetch as the HNIs: a GLB, or an OBJ and the MTL files it
+// names beside it (a missing MTL is the reader's warning, not an error).
 Result<TriangleMesh> CityLoader::readComplement(const std::string& location, std::size_t& bytes) const {
   auto obj = fetch_(location);
   if (!obj) return obj.error();
   bytes += obj->size();
+  if (scene::isGlbPath(location)) {
+    std::vector<std::string> warnings;
+    return scene::readGlbBytes(*obj, location, warnings);
+  }
   const scene::MtlReader mtl = [&](const std::string& path) -> Result<std::string> {
     auto text = fetch_(path);
     if (!text) return text.error();

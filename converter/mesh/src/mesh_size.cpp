@@ -85,13 +85,14 @@ struct GltfParts {
   nlohmann::json bufferViews = nlohmann::json::array(), accessors = nlohmann::json::array(),
                  primitives = nlohmann::json::array(), materials = nlohmann::json::array();
 
-  // Appends meshoptimizer-encoded data as a buffer view; returns its index.
+  // Appends meshoptimizer-encoded data as a buffer view; returns its index. A vertex view states
+  // its stride (8 for three 16-bit components, which glTF aligns to 4 bytes).
   std::size_t addMeshoptView(const std::vector<unsigned char>& data, std::size_t stride, std::size_t count,
                              const char* mode) {
     const std::size_t offset = bin.size();
     append(bin, data.data(), data.size());
     padTo4(bin, 0);
-    bufferViews.push_back({{"buffer", 0},
+    nlohmann::json view = {{"buffer", 0},
                            {"byteOffset", offset},
                            {"byteLength", data.size()},
                            {"extensions",
@@ -101,7 +102,9 @@ struct GltfParts {
                                {"byteLength", data.size()},
                                {"byteStride", stride},
                                {"count", count},
-                               {"mode", mode}}}}}});
+                               {"mode", mode}}}}}};
+    if (std::string(mode) == "ATTRIBUTES") view["byteStride"] = stride;
+    bufferViews.push_back(std::move(view));
     return bufferViews.size() - 1;
   }
 
@@ -119,6 +122,7 @@ struct GltfParts {
     materials.push_back({{"pbrMetallicRoughness",
                           {{"baseColorFactor", {mat.r / 255.0, mat.g / 255.0, mat.b / 255.0, mat.opacity / 255.0}},
                            {"metallicFactor", 0}}}});
+    if (mat.opacity != 255) materials.back()["alphaMode"] = "BLEND";  // glTF ignores alpha otherwise
     primitives.push_back({{"attributes", {{"POSITION", accessors.size() - 2}}},
                           {"indices", accessors.size() - 1},
                           {"material", materials.size() - 1}});

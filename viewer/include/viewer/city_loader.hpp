@@ -41,7 +41,7 @@ class CityLoader {
   CityLoader(const CityLoader&) = delete;
   CityLoader& operator=(const CityLoader&) = delete;
 
-  // Queues a building's PNG, and its complementary mesh (OBJ, with its MTL files beside it) when
+  // Queues a building's PNG, and its complementary mesh (a GLB, or an OBJ with its MTL files) when
   // `complement` is not empty; requests are served in the order made.
   void request(std::size_t building, std::string location, std::string complement = {});
   // What has finished since the last call.
