@@ -38,6 +38,7 @@ struct ConvertCliOptions {
   std::vector<std::string> blocks;
   int threads = 0;
   std::string pngEffort = "smallest";
+  std::string complementFormat = "glb";  // of the complements written into a folder
 };
 
 // -o names one HNI when it ends in .png (any case); otherwise a folder.
@@ -178,7 +179,7 @@ std::vector<ConvertedBuilding> convertSideBySide(const ConvertCliOptions& o, std
       } else {
         const bool hasComplement = !conversion->complement.triangles.empty();
         b.hni = stems[i] + ".png";
-        b.complement = hasComplement ? stems[i] + ".complement.obj" : "";
+        b.complement = hasComplement ? stems[i] + ".complement." + o.complementFormat : "";
         if (Status s = converter::writeConversion(*conversion, (fs::path(o.output) / b.hni).string(),
                                                   hasComplement ? (fs::path(o.output) / b.complement).string() : "",
                                                   effortOf(o));
@@ -268,8 +269,20 @@ void addConvertCommand(CLI::App& app, int& exitCode) {
       ->check(CLI::Range(0.0, 10.0));
   cmd->add_flag("--z-up", o->zUp, "The OBJ is z-up (turned to the y-up world frame)");
   cmd->add_option("--complement", o->complement,
-                  "Write the faces the HNI does not show as OBJ + MTL (world coordinates)")
-      ->check(outputExtension(".obj", "OBJ"));
+                  "Write the faces the HNI does not show (world coordinates): a binary glTF compressed with "
+                  "meshoptimizer (.glb) or OBJ + MTL (.obj)")
+      ->check(CLI::Validator(
+          [](std::string& path) {
+            const std::string extension = lowerExtension(path);
+            if (extension == ".glb" || extension == ".obj") return std::string();
+            return path + ": writes a mesh; expected a name ending in .glb or .obj";
+          },
+          ""));
+  cmd->add_option("--complement-format", o->complementFormat,
+                  "With -o FOLDER: write each building's complementary mesh as glb (binary glTF, meshoptimizer) "
+                  "or obj (OBJ + MTL)")
+      ->check(CLI::IsMember({"glb", "obj"}))
+      ->capture_default_str();
   cmd->add_option("--report", o->report,
                   "Write the conversion report as JSON (timings, grid, blocks, bytes, surface fractions)")
       ->check(outputExtension(".json", "JSON"));
@@ -296,7 +309,7 @@ void addConvertCommand(CLI::App& app, int& exitCode) {
       ->check(CLI::IsMember({"small", "smallest"}))
       ->capture_default_str();
   cmd->footer(
-      "Examples:\n  nut convert samples/obj/highrise.obj -o highrise.png --complement highrise-rest.obj --report "
+      "Examples:\n  nut convert samples/obj/carpark.obj -o carpark.png --complement carpark-rest.glb --report "
       "report.json\n"
       "  nut convert samples/obj/street.obj -o street/        # one HNI per object + street/city.json\n\n" +
       std::string(kExitCodesHelp));

@@ -97,7 +97,8 @@ class Sizes:
         row = dict(self.peers(obj, name, several), input=name, kind=kind)
         if several:
             folder = os.path.join(self.out, name)
-            run([self.nut, "convert", obj, "-o", folder + "/", "--quiet"])
+            # OBJ complements, which gltfpack packs as one file below.
+            run([self.nut, "convert", obj, "-o", folder + "/", "--quiet", "--complement-format", "obj"])
             pngs = sorted(glob.glob(folder + "/*.png"))
             rests = sorted(glob.glob(folder + "/*.obj"))
             merged = os.path.join(self.out, name + ".rest.obj")

@@ -20,6 +20,7 @@
 #include <nut/png_io.hpp>
 #include <nut/raycast.hpp>
 #include <scene/city.hpp>
+#include <scene/mesh_file.hpp>
 #include <scene/scene.hpp>
 
 #include "cli_support.hpp"
@@ -58,6 +59,54 @@ TEST(ConvertCli, WritesTheHniComplementAndReport) {
   EXPECT_EQ(report["hni"]["bytes_png"].get<long long>(), static_cast<long long>(fs::file_size(out("carpark.png"))));
   EXPECT_GT(report["surface"]["nut_fraction"].get<double>(), 0.9);
   EXPECT_GT(report["phases_seconds"]["solid"].get<double>(), 0.0);
+}
+
+// The complementary mesh as binary glTF: by its name with --complement, by default in a folder.
+// Read back (the scene's GLB reader), each holds the triangles of its OBJ, at most one 16-bit
+// quantization step of the mesh's bounds away.
+TEST(ConvertCli, ComplementsAreBinaryGltfByNameAndInFolders) {
+  CliRun r = nut("convert " + sample("carpark.obj") + " -o " + out("carpark-g.png") + " --complement " +
+                 out("carpark-g-rest.glb") + " --quiet");
+  ASSERT_EQ(r.exitCode, 0) << r.stderrText;
+  r = nut("convert " + sample("carpark.obj") + " -o " + out("carpark-o.png") + " --complement " +
+          out("carpark-o-rest.obj") + " --quiet");
+  ASSERT_EQ(r.exitCode, 0) << r.stderrText;
+  std::vector<std::string> warnings;
+  auto glb = scene::readMeshFile(out("carpark-g-rest.glb"), warnings);
+  auto obj = scene::readMeshFile(out("carpark-o-rest.obj"), warnings);
+  ASSERT_TRUE(glb.ok()) << glb.error().message;
+  ASSERT_TRUE(obj.ok()) << obj.error().message;
+  ASSERT_EQ(glb->triangles.size(), obj->triangles.size());
+  const WorldBox fromGlb = glb->bounds(), fromObj = obj->bounds();
+  const glm::dvec3 extent = fromObj.max - fromObj.min;
+  const double step = std::max({extent.x, extent.y, extent.z}) / 65535.0;
+  for (int axis = 0; axis < 3; ++axis) {
+    EXPECT_NEAR(fromGlb.min[axis], fromObj.min[axis], step);
+    EXPECT_NEAR(fromGlb.max[axis], fromObj.max[axis], step);
+  }
+  EXPECT_NEAR(glb->area(), obj->area(), 1e-3 * obj->area());
+
+  for (const char* format : {"", "obj"}) {
+    const std::string folder = out(std::string("street-complements-") + (*format ? format : "default"));
+    fs::remove_all(folder);
+    r = nut("convert " + sample("street.obj") + " -o " + folder + "/ --quiet --png-effort small" +
+            (*format ? std::string(" --complement-format ") + format : std::string()));
+    ASSERT_EQ(r.exitCode, 0) << r.stderrText;
+    auto city = scene::readCityJson(folder + "/city.json");
+    ASSERT_TRUE(city.ok()) << city.error().message;
+    std::size_t complements = 0;
+    for (const scene::CityBuilding& b : city->buildings) {
+      if (b.complement.empty()) continue;
+      ++complements;
+      EXPECT_EQ(fs::path(b.complement).extension(), *format ? ".obj" : ".glb") << b.complement;
+      auto mesh = scene::readMeshFile(folder + "/" + b.complement, warnings);
+      EXPECT_TRUE(mesh.ok()) << b.complement;
+    }
+    EXPECT_GT(complements, 0u);
+    auto scene = scene::loadScene(folder + "/city.json", {});
+    ASSERT_TRUE(scene.ok()) << scene.error().message;
+    EXPECT_EQ(scene->meshes.size(), complements);
+  }
 }
 
 TEST(ConvertCli, QuietPrintsNothing) {
@@ -171,7 +220,7 @@ TEST(ConvertCli, AnOutputNameOfAnotherFormatIsRefusedBeforeAnyWork) {
   } cases[] = {
       {" -o " + out("refused.jpg"), out("refused.jpg"), "a name ending in .png) or a folder"},
       {" -o " + out("refused.png") + " --complement " + out("refused.ply"), out("refused.ply"),
-       "expected a name ending in .obj"},
+       "expected a name ending in .glb or .obj"},
       {" -o " + out("refused.png") + " --report " + out("refused.txt"), out("refused.txt"),
        "expected a name ending in .json"},
   };

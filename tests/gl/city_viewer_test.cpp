@@ -457,15 +457,16 @@ TEST_F(StreamedCity, ASlowServerDoesNotSlowTheFrames) {
   RecordProperty("loaded_median_ms", std::to_string(median(loaded)));
 }
 
-// A converted street (`nut convert samples/obj/street.obj -o DIR/`): four HNIs, each with its
-// complementary mesh, which the viewer fetches with the HNI and draws in the same depth buffer;
-// the settled frame agrees with the CPU scene render (Embree for the meshes).
+// A converted street (`nut convert samples/obj/street.obj -o DIR/ --complement-format obj`): four
+// HNIs, each with its complementary mesh, which the viewer fetches with the HNI and draws in the
+// same depth buffer; the settled frame agrees with the CPU scene render (Embree for the meshes),
+// and with the frame of the same complements written as binary glTF.
 TEST_F(StreamedCity, ComplementaryMeshesAreDrawnWithTheirBuildings) {
   if (!NUT_HAVE_CONVERTER) GTEST_SKIP() << "this build has no converter (NUT_BUILD_CONVERTER=OFF)";
   const fs::path dir = gltest::outputDir("city") / "street";
   fs::remove_all(dir);
   ASSERT_EQ(std::system((std::string(NUT_CLI_PATH) + " convert " + NUT_SOURCE_DIR + "/samples/obj/street.obj -o " +
-                         dir.string() + "/ --quiet --png-effort small")
+                         dir.string() + "/ --quiet --png-effort small --complement-format obj")
                             .c_str()),
             0);
   const fs::path manifest = dir / "city.json";

@@ -22,6 +22,7 @@
 #include <converter/wings.hpp>
 #include <nut/mesh_export.hpp>
 #include <nut/png_io.hpp>
+#include <scene/mesh_file.hpp>
 
 #include "parallel.hpp"
 
@@ -541,10 +542,10 @@ Status writeConversion(Conversion& conversion, const std::string& pngPath, const
   if (Status s = writeHni(pngPath, conversion.image, hniText(conversion), effort); !s) return s;
   std::error_code ec;
   conversion.report.pngBytes = std::filesystem::file_size(pngPath, ec);
-  if (!complementPath.empty()) {
-    if (Status s = writeObj(complementPath, conversion.complement); !s) return s;
-  }
-  return Ok{};
+  if (complementPath.empty()) return Ok{};
+  if (!scene::isGlbPath(complementPath)) return writeObj(complementPath, conversion.complement);
+  const std::vector<std::uint8_t> glb = meshoptGlb(conversion.complement);
+  return writeTextFile(complementPath, std::string(glb.begin(), glb.end()));  // written whole, any bytes
 }
 
 namespace {

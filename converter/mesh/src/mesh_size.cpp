@@ -82,19 +82,22 @@ std::optional<EncodedPrimitive> encodePrimitive(const TriangleMesh& mesh, std::s
 // The binary chunk and the glTF objects that describe it.
 struct GltfParts {
   std::vector<std::uint8_t> bin;
+  std::size_t fallbackBytes = 0;  // the decoded views' size
   nlohmann::json bufferViews = nlohmann::json::array(), accessors = nlohmann::json::array(),
                  primitives = nlohmann::json::array(), materials = nlohmann::json::array();
 
-  // Appends meshoptimizer-encoded data as a buffer view; returns its index. A vertex view states
-  // its stride (8 for three 16-bit components, which glTF aligns to 4 bytes).
+  // Appends meshoptimizer-encoded data as a buffer view; returns its index. As the extension
+  // asks, the view itself describes the decoded data (count x stride bytes, a vertex view's
+  // stride stated) in buffer 1, the fallback, which holds no bytes; the extension points at the
+  // encoded bytes in buffer 0, the BIN chunk.
   std::size_t addMeshoptView(const std::vector<unsigned char>& data, std::size_t stride, std::size_t count,
                              const char* mode) {
     const std::size_t offset = bin.size();
     append(bin, data.data(), data.size());
     padTo4(bin, 0);
-    nlohmann::json view = {{"buffer", 0},
-                           {"byteOffset", offset},
-                           {"byteLength", data.size()},
+    nlohmann::json view = {{"buffer", 1},
+                           {"byteOffset", fallbackBytes},
+                           {"byteLength", count * stride},
                            {"extensions",
                             {{"EXT_meshopt_compression",
                               {{"buffer", 0},
@@ -104,6 +107,7 @@ struct GltfParts {
                                {"count", count},
                                {"mode", mode}}}}}};
     if (std::string(mode) == "ATTRIBUTES") view["byteStride"] = stride;
+    fallbackBytes += (count * stride + 3) / 4 * 4;
     bufferViews.push_back(std::move(view));
     return bufferViews.size() - 1;
   }
@@ -161,7 +165,9 @@ std::vector<std::uint8_t> meshoptGlb(const TriangleMesh& mesh) {
       {"asset", {{"version", "2.0"}, {"generator", "nut mesh_size"}}},
       {"extensionsUsed", {"EXT_meshopt_compression", "KHR_mesh_quantization"}},
       {"extensionsRequired", {"EXT_meshopt_compression", "KHR_mesh_quantization"}},
-      {"buffers", {{{"byteLength", parts.bin.size()}}}},
+      {"buffers",
+       {{{"byteLength", parts.bin.size()}},
+        {{"byteLength", parts.fallbackBytes}, {"extensions", {{"EXT_meshopt_compression", {{"fallback", true}}}}}}}},
       {"bufferViews", parts.bufferViews},
       {"accessors", parts.accessors},
       {"materials", parts.materials},
