@@ -10,9 +10,10 @@
 // run allocated. Mesh: every building's HNI exported as triangles (nut::exportMesh, placed and
 // turned as the manifest says, on all cores) and uploaded as the renderer's vertex buffers; each
 // view draws the buildings whose box meets the frustum (the same test as the NUT renderer),
-// `--hold` frames timed (the same cap), after one untimed frame before the first view. A mesh city that would pass `--mesh-budget-mb` of
-// vertex buffers is not drawn, and the result says so. Frames end with glFinish. Not a Google
-// Benchmark: each run is one city, and the script compares the cities.
+// `--hold` frames timed (the same cap), after one untimed frame before the first view. A mesh
+// city that would pass `--mesh-budget-mb` of vertex buffers is not drawn, and the result says so.
+// Frames end with glFinish. Not a Google Benchmark: each run is one city, and the script compares
+// the cities.
 #include <algorithm>
 #include <atomic>
 #include <chrono>

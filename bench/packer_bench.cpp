@@ -179,8 +179,8 @@ void reportAtlas(benchmark::State& state, const PageFill& fill) {
   const std::vector<packer::Item>& items = cityHnis();
   long long used = 0;
   for (const packer::Item& item : items) used += static_cast<long long>(item.width) * item.height;
-  const long long counted =
-      static_cast<long long>(fill.pages - 1) * kPageSize * kPageSize + static_cast<long long>(fill.lastPageBottom) * kPageSize;
+  const long long counted = static_cast<long long>(fill.pages - 1) * kPageSize * kPageSize +
+                            static_cast<long long>(fill.lastPageBottom) * kPageSize;
   state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(items.size()));
   state.counters["pages"] = fill.pages;
   state.counters["waste_pct"] = 100.0 * static_cast<double>(counted - used) / static_cast<double>(counted);

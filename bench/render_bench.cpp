@@ -64,7 +64,8 @@ T orFail(nut::Result<T> result) {
 double coverage(const nut::meshref::EmbreeRenderer& embree, nut::Camera camera) {
   camera.width = 160, camera.height = 90;
   const auto frame = embree.render(camera, kThreads);
-  const auto hits = std::count_if(frame.distanceM.begin(), frame.distanceM.end(), [](float d) { return std::isfinite(d); });
+  const auto hits =
+      std::count_if(frame.distanceM.begin(), frame.distanceM.end(), [](float d) { return std::isfinite(d); });
   return static_cast<double>(hits) / static_cast<double>(frame.distanceM.size());
 }
 
@@ -188,7 +189,8 @@ const bool registered = [] {
             [n, view, rays = rays](benchmark::State& st) { embree(st, n, view, rays); });
       add("Render/nut_heuristic" + suffix,
           [n, view](benchmark::State& st) { nutCaster(st, n, view, nut::Lookup::Heuristic, 0); });
-      add("Render/nut_exact" + suffix, [n, view](benchmark::State& st) { nutCaster(st, n, view, nut::Lookup::Exact, 0); });
+      add("Render/nut_exact" + suffix,
+          [n, view](benchmark::State& st) { nutCaster(st, n, view, nut::Lookup::Exact, 0); });
     }
   // Level of detail on the building seen from six times the default distance.
   for (double lod : {0.0, 1.0, 2.0, 4.0, 8.0, 16.0})

@@ -216,7 +216,8 @@ void addRenderCommand(CLI::App& app, int& exitCode) {
 #endif
   cmd->add_option(
       "--mesh", o->meshes,
-      "A mesh (OBJ or GLB; a complementary mesh) drawn with the HNI in one image, nearest surface in front (repeatable)");
+      "A mesh (OBJ or GLB; a complementary mesh) drawn with the HNI in one image, nearest surface in front "
+      "(repeatable)");
   cmd->add_option("--lod", o->lod,
                   "auto: draw a sub-block as its visual summary where one pixel spans more than the footprint "
                   "measured for it (HNIs from `nut grammar --lod`); off: full detail")

@@ -112,7 +112,9 @@ void addRenderMeshCommand(CLI::App& app, int& exitCode) {
   auto o = std::make_shared<RenderMeshOptions>();
   CLI::App* cmd =
       app.add_subcommand("render-mesh", "Render an OBJ or GLB mesh with the reference renderer (Embree) or OpenGL");
-  cmd->add_option("input", o->input, "Mesh: OBJ (materials from the MTL files it names: Kd colour, d opacity) or binary glTF (.glb: base colour factors)")
+  cmd->add_option("input", o->input,
+                  "Mesh: OBJ (materials from the MTL files it names: Kd colour, d opacity) or binary glTF (.glb: "
+                  "base colour factors)")
       ->required();
   cmd->add_option("-o,--output", o->output, "Output image (PNG)")->required()->check(outputExtension(".png", "PNG"));
   o->camera.addTo(*cmd);

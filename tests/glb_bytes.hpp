@@ -63,13 +63,16 @@ inline std::vector<std::uint8_t> meshAsGlb(const TriangleMesh& mesh) {
         for (std::uint32_t v : mesh.triangles[t]) appendGlbU32(bin, v), ++count;
     if (count == 0) continue;
     views.push_back({{"buffer", 0}, {"byteOffset", offset}, {"byteLength", 4 * count}});
-    accessors.push_back({{"bufferView", views.size() - 1}, {"componentType", 5125}, {"count", count}, {"type", "SCALAR"}});
+    accessors.push_back(
+        {{"bufferView", views.size() - 1}, {"componentType", 5125}, {"count", count}, {"type", "SCALAR"}});
     const Material& mat = mesh.materials[m];
     nlohmann::json material = {
-        {"pbrMetallicRoughness", {{"baseColorFactor", {mat.r / 255.0, mat.g / 255.0, mat.b / 255.0, mat.opacity / 255.0}}}}};
+        {"pbrMetallicRoughness",
+         {{"baseColorFactor", {mat.r / 255.0, mat.g / 255.0, mat.b / 255.0, mat.opacity / 255.0}}}}};
     if (mat.opacity != 255) material["alphaMode"] = "BLEND";
     materials.push_back(material);
-    primitives.push_back({{"attributes", {{"POSITION", 0}}}, {"indices", accessors.size() - 1}, {"material", materials.size() - 1}});
+    primitives.push_back(
+        {{"attributes", {{"POSITION", 0}}}, {"indices", accessors.size() - 1}, {"material", materials.size() - 1}});
   }
   const nlohmann::json gltf = {{"asset", {{"version", "2.0"}}},
                                {"buffers", {{{"byteLength", bin.size()}}}},

@@ -239,10 +239,18 @@ void EmbreeRenderer::Scene::tracePackets(const glm::dvec3& origin, const RayGene
         valid[lane] = x < x1 && y < y1 ? -1 : 0;
         directions[lane] = valid[lane] ? generator.direction(x, y) : glm::dvec3(0, 0, 1);
         const RTCRayHit one = firstRay(origin, directions[lane], 0.0f);
-        packet.ray.org_x[lane] = one.ray.org_x, packet.ray.org_y[lane] = one.ray.org_y, packet.ray.org_z[lane] = one.ray.org_z;
-        packet.ray.dir_x[lane] = one.ray.dir_x, packet.ray.dir_y[lane] = one.ray.dir_y, packet.ray.dir_z[lane] = one.ray.dir_z;
-        packet.ray.tnear[lane] = one.ray.tnear, packet.ray.tfar[lane] = one.ray.tfar, packet.ray.time[lane] = one.ray.time;
-        packet.ray.mask[lane] = one.ray.mask, packet.ray.id[lane] = one.ray.id, packet.ray.flags[lane] = one.ray.flags;
+        packet.ray.org_x[lane] = one.ray.org_x;
+        packet.ray.org_y[lane] = one.ray.org_y;
+        packet.ray.org_z[lane] = one.ray.org_z;
+        packet.ray.dir_x[lane] = one.ray.dir_x;
+        packet.ray.dir_y[lane] = one.ray.dir_y;
+        packet.ray.dir_z[lane] = one.ray.dir_z;
+        packet.ray.tnear[lane] = one.ray.tnear;
+        packet.ray.tfar[lane] = one.ray.tfar;
+        packet.ray.time[lane] = one.ray.time;
+        packet.ray.mask[lane] = one.ray.mask;
+        packet.ray.id[lane] = one.ray.id;
+        packet.ray.flags[lane] = one.ray.flags;
         packet.hit.geomID[lane] = RTC_INVALID_GEOMETRY_ID;
         packet.hit.instID[0][lane] = RTC_INVALID_GEOMETRY_ID;
       }

@@ -11,9 +11,9 @@
 #include <map>
 #include <optional>
 
+#include <meshoptimizer.h>
 #include <glm/gtc/quaternion.hpp>
 #include <glm/mat4x4.hpp>
-#include <meshoptimizer.h>
 #include <nlohmann/json.hpp>
 
 #include <nut/png_io.hpp>
@@ -71,9 +71,12 @@ std::optional<std::array<double, N>> numbers(const Json* j) {
 
 std::size_t componentBytes(std::uint64_t componentType) {
   switch (componentType) {
-    case 5120: case 5121: return 1;  // byte, unsigned byte
-    case 5122: case 5123: return 2;  // short, unsigned short
-    case 5125: case 5126: return 4;  // unsigned int, float
+    case 5120:
+    case 5121: return 1;  // byte, unsigned byte
+    case 5122:
+    case 5123: return 2;  // short, unsigned short
+    case 5125:
+    case 5126: return 4;  // unsigned int, float
     default: return 0;
   }
 }
@@ -89,7 +92,8 @@ class Reader {
     if (Status s = checkVersion(); !s) return s.error();
     if (Status s = scene(); !s) return s.error();
     if (degenerate_ > 0)
-      warnings_.push_back(name_ + ": " + std::to_string(degenerate_) + " degenerate triangles (a repeated vertex) left out");
+      warnings_.push_back(name_ + ": " + std::to_string(degenerate_) +
+                          " degenerate triangles (a repeated vertex) left out");
     if (mesh_.triangles.empty()) return fail("no triangles");
     return std::move(mesh_);
   }
@@ -98,7 +102,8 @@ class Reader {
   Error fail(const std::string& what) const { return Error{name_ + ": " + what}; }
 
   Status container(std::span<const std::uint8_t> bytes) {
-    if (bytes.size() < 20) return fail("not a GLB file: " + std::to_string(bytes.size()) + " bytes, shorter than its header");
+    if (bytes.size() < 20)
+      return fail("not a GLB file: " + std::to_string(bytes.size()) + " bytes, shorter than its header");
     if (u32At(bytes, 0) != kGlbMagic) return fail("not a GLB file (no glTF magic)");
     if (u32At(bytes, 4) != 2) return fail("GLB version " + std::to_string(u32At(bytes, 4)) + ", not 2");
     const std::uint64_t length = u32At(bytes, 8);
@@ -199,7 +204,8 @@ class Reader {
       return fail(where + ": meshopt mode " + kind + " with a stride of " + std::to_string(*stride.value) +
                   " is not valid");
     }
-    if (status != 0) return fail(where + ": the meshopt data is corrupt (decoder status " + std::to_string(status) + ")");
+    if (status != 0)
+      return fail(where + ": the meshopt data is corrupt (decoder status " + std::to_string(status) + ")");
     return std::span<const std::uint8_t>(decoded_[index] = std::move(out));
   }
 
@@ -216,7 +222,8 @@ class Reader {
     if (!viewIndex.value || !countField.value || !componentType.value || offset.bad)
       return fail(where + ": no bufferView, count or componentType");
     const std::size_t bytesEach = componentBytes(*componentType.value);
-    const bool integerIndex = *componentType.value == 5121 || *componentType.value == 5123 || *componentType.value == 5125;
+    const bool integerIndex =
+        *componentType.value == 5121 || *componentType.value == 5123 || *componentType.value == 5125;
     if (bytesEach == 0 || (indices && !integerIndex) || (!indices && *componentType.value == 5125))
       return fail(where + ": component type " + std::to_string(*componentType.value) + " is not valid here");
     const Json* normalizedMember = member(*a, "normalized");
@@ -239,18 +246,42 @@ class Reader {
     std::vector<double> out(count * components);
     for (std::uint64_t e = 0; e < count; ++e)
       for (std::size_t c = 0; c < components; ++c)
-        out[e * components + c] = component(data->data() + start + e * stride + c * bytesEach, *componentType.value, normalized);
+        out[e * components + c] =
+            component(data->data() + start + e * stride + c * bytesEach, *componentType.value, normalized);
     return out;
   }
 
   static double component(const std::uint8_t* p, std::uint64_t type, bool normalized) {
     switch (type) {
-      case 5120: { std::int8_t v; std::memcpy(&v, p, 1); return normalized ? std::max(v / 127.0, -1.0) : v; }
-      case 5121: { std::uint8_t v = *p; return normalized ? v / 255.0 : v; }
-      case 5122: { std::int16_t v; std::memcpy(&v, p, 2); return normalized ? std::max(v / 32767.0, -1.0) : v; }
-      case 5123: { std::uint16_t v; std::memcpy(&v, p, 2); return normalized ? v / 65535.0 : v; }
-      case 5125: { std::uint32_t v; std::memcpy(&v, p, 4); return v; }
-      default: { float v; std::memcpy(&v, p, 4); return v; }
+      case 5120: {
+        std::int8_t v;
+        std::memcpy(&v, p, 1);
+        return normalized ? std::max(v / 127.0, -1.0) : v;
+      }
+      case 5121: {
+        std::uint8_t v = *p;
+        return normalized ? v / 255.0 : v;
+      }
+      case 5122: {
+        std::int16_t v;
+        std::memcpy(&v, p, 2);
+        return normalized ? std::max(v / 32767.0, -1.0) : v;
+      }
+      case 5123: {
+        std::uint16_t v;
+        std::memcpy(&v, p, 2);
+        return normalized ? v / 65535.0 : v;
+      }
+      case 5125: {
+        std::uint32_t v;
+        std::memcpy(&v, p, 4);
+        return v;
+      }
+      default: {
+        float v;
+        std::memcpy(&v, p, 4);
+        return v;
+      }
     }
   }
 
@@ -275,7 +306,9 @@ class Reader {
       if (pbr && member(*pbr, "baseColorTexture"))
         warnings_.push_back(name_ + ": material " + std::to_string(*index) +
                             ": its base colour texture is not read; its colour factor is used");
-      const auto byte = [](double x) { return static_cast<std::uint8_t>(std::lround(255.0 * std::clamp(x, 0.0, 1.0))); };
+      const auto byte = [](double x) {
+        return static_cast<std::uint8_t>(std::lround(255.0 * std::clamp(x, 0.0, 1.0)));
+      };
       m = {byte(factor[0]), byte(factor[1]), byte(factor[2]), 255, 0};
       const Json* alphaMode = member(*g, "alphaMode");
       if (alphaMode && *alphaMode == "BLEND") m.opacity = byte(factor[3]);
@@ -297,7 +330,8 @@ class Reader {
     const Json* modeMember = member(p, "mode");
     const std::uint64_t mode = modeMember && modeMember->is_number_unsigned() ? modeMember->get<std::uint64_t>() : 4;
     if (mode != 4) {
-      warnings_.push_back(name_ + ": " + where + " draws points or lines (mode " + std::to_string(mode) + "), left out");
+      warnings_.push_back(name_ + ": " + where + " draws points or lines (mode " + std::to_string(mode) +
+                          "), left out");
       return Ok{};
     }
     const Json* attributes = member(p, "attributes");
@@ -315,7 +349,8 @@ class Reader {
       indices.resize(vertexCount);
       for (std::size_t i = 0; i < vertexCount; ++i) indices[i] = static_cast<double>(i);
     }
-    if (indices.size() % 3 != 0) return fail(where + ": " + std::to_string(indices.size()) + " indices, not whole triangles");
+    if (indices.size() % 3 != 0)
+      return fail(where + ": " + std::to_string(indices.size()) + " indices, not whole triangles");
     if (mesh_.triangles.size() + indices.size() / 3 > kMaxGlbTriangles)
       return fail("more than " + std::to_string(kMaxGlbTriangles) + " triangles");
     const Unsigned materialIndex = unsignedMember(p, "material");
@@ -325,7 +360,8 @@ class Reader {
 
     const std::size_t base = mesh_.positions.size();
     for (std::size_t v = 0; v < vertexCount; ++v) {
-      const glm::dvec4 world = transform * glm::dvec4((*positions)[3 * v], (*positions)[3 * v + 1], (*positions)[3 * v + 2], 1.0);
+      const glm::dvec4 world =
+          transform * glm::dvec4((*positions)[3 * v], (*positions)[3 * v + 1], (*positions)[3 * v + 2], 1.0);
       if (!std::isfinite(world.x) || !std::isfinite(world.y) || !std::isfinite(world.z))
         return fail(where + ": vertex " + std::to_string(v) + " is not a finite position");
       mesh_.positions.emplace_back(world);
@@ -386,7 +422,8 @@ class Reader {
 
   Status node(std::uint64_t index, const glm::dmat4& parent, int depth) {
     const std::string where = "node " + std::to_string(index);
-    if (depth > kMaxNodeDepth) return fail(where + ": the node tree is deeper than " + std::to_string(kMaxNodeDepth) + " (a cycle?)");
+    if (depth > kMaxNodeDepth)
+      return fail(where + ": the node tree is deeper than " + std::to_string(kMaxNodeDepth) + " (a cycle?)");
     const Json* n = element("nodes", index);
     if (!n) return fail(where + " does not exist");
     const auto local = localTransform(*n);
@@ -395,7 +432,8 @@ class Reader {
     if (const Unsigned meshIndex = unsignedMember(*n, "mesh"); meshIndex.value) {
       const Json* m = element("meshes", *meshIndex.value);
       const Json* primitives = m ? member(*m, "primitives") : nullptr;
-      if (!primitives || !primitives->is_array()) return fail("mesh " + std::to_string(*meshIndex.value) + " does not exist or has no primitives");
+      if (!primitives || !primitives->is_array())
+        return fail("mesh " + std::to_string(*meshIndex.value) + " does not exist or has no primitives");
       for (std::size_t p = 0; p < primitives->size(); ++p)
         if (Status s = primitive((*primitives)[p], transform,
                                  "mesh " + std::to_string(*meshIndex.value) + " primitive " + std::to_string(p));
@@ -427,7 +465,8 @@ class Reader {
       for (const Json& n : *nodes)
         if (const Json* children = member(n, "children"); children && children->is_array())
           for (const Json& c : *children)
-            if (c.is_number_unsigned() && c.get<std::uint64_t>() < isChild.size()) isChild[c.get<std::uint64_t>()] = true;
+            if (c.is_number_unsigned() && c.get<std::uint64_t>() < isChild.size())
+              isChild[c.get<std::uint64_t>()] = true;
       for (std::uint64_t i = 0; i < nodes->size(); ++i)
         if (!isChild[i]) roots.push_back(i);
     }
@@ -441,7 +480,7 @@ class Reader {
   Json gltf_;
   std::span<const std::uint8_t> bin_;
   std::map<std::uint64_t, std::vector<std::uint8_t>> decoded_;  // meshopt views by index
-  std::map<std::int64_t, std::uint16_t> materials_;              // glTF material (-1: default) -> mesh
+  std::map<std::int64_t, std::uint16_t> materials_;             // glTF material (-1: default) -> mesh
   TriangleMesh mesh_;
   std::size_t degenerate_ = 0;
 };

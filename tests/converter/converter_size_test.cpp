@@ -55,7 +55,8 @@ TEST(MeshSize, TheGlbDecodesBackToTheTriangles) {
     const Material& mat = m.materials[m.triangleMaterial[t]];
     return std::array<std::uint8_t, 4>{mat.r, mat.g, mat.b, mat.opacity};
   };
-  for (std::size_t t = 0; t < mesh.triangles.size(); ++t) sourceCentroids[colourOf(mesh, t)].push_back(centroid(mesh, t));
+  for (std::size_t t = 0; t < mesh.triangles.size(); ++t)
+    sourceCentroids[colourOf(mesh, t)].push_back(centroid(mesh, t));
   std::size_t unmatched = 0;
   for (std::size_t t = 0; t < decoded->triangles.size(); ++t) {
     const auto it = sourceCentroids.find(colourOf(*decoded, t));

@@ -1,5 +1,6 @@
 // `fuzz_seeds DIR`: writes every fuzz target's generated seeds (seed_inputs.hpp) as a libFuzzer
-// corpus, one folder per target: DIR/hni_fuzz, DIR/render_fuzz, DIR/obj_fuzz, DIR/glb_fuzz, DIR/city_fuzz, DIR/grammar_fuzz.
+// corpus, one folder per target: DIR/hni_fuzz, DIR/render_fuzz, DIR/obj_fuzz, DIR/glb_fuzz, DIR/city_fuzz,
+// DIR/grammar_fuzz.
 // Seeds over kMaxSeedBytes (the larger sample OBJs) are left to the plain corpus test: libFuzzer
 // mutates small inputs faster, and the Makefile caps obj_fuzz inputs at that size.
 #include <cstdio>

@@ -10,8 +10,8 @@
 #include <string>
 #include <vector>
 
-#include <glm/geometric.hpp>
 #include <meshoptimizer.h>
+#include <glm/geometric.hpp>
 #include <nlohmann/json.hpp>
 
 #include <scene/glb.hpp>
@@ -45,16 +45,21 @@ Sample triangleSample() {
   const double half = std::sqrt(0.5);
   s.gltf = {{"asset", {{"version", "2.0"}}},
             {"buffers", {{{"byteLength", s.bin.size()}}}},
-            {"bufferViews", {{{"buffer", 0}, {"byteOffset", 0}, {"byteLength", 36}},
-                             {{"buffer", 0}, {"byteOffset", 36}, {"byteLength", 6}}}},
-            {"accessors", {{{"bufferView", 0}, {"componentType", 5126}, {"count", 3}, {"type", "VEC3"}},
-                           {{"bufferView", 1}, {"componentType", 5123}, {"count", 3}, {"type", "SCALAR"}}}},
-            {"materials", {{{"name", "glass"}, {"alphaMode", "BLEND"},
-                            {"pbrMetallicRoughness", {{"baseColorFactor", {1.0, 0.0, 0.0, 0.5}}}}}}},
+            {"bufferViews",
+             {{{"buffer", 0}, {"byteOffset", 0}, {"byteLength", 36}},
+              {{"buffer", 0}, {"byteOffset", 36}, {"byteLength", 6}}}},
+            {"accessors",
+             {{{"bufferView", 0}, {"componentType", 5126}, {"count", 3}, {"type", "VEC3"}},
+              {{"bufferView", 1}, {"componentType", 5123}, {"count", 3}, {"type", "SCALAR"}}}},
+            {"materials",
+             {{{"name", "glass"},
+               {"alphaMode", "BLEND"},
+               {"pbrMetallicRoughness", {{"baseColorFactor", {1.0, 0.0, 0.0, 0.5}}}}}}},
             {"meshes", {{{"primitives", {{{"attributes", {{"POSITION", 0}}}, {"indices", 1}, {"material", 0}}}}}}},
-            {"nodes", {{{"mesh", 0}, {"translation", {10, 0, 0}}, {"rotation", {0, half, 0, half}}},
-                       {{"translation", {0, 5, 0}}, {"children", {2}}},
-                       {{"mesh", 0}, {"scale", {2, 2, 2}}}}},
+            {"nodes",
+             {{{"mesh", 0}, {"translation", {10, 0, 0}}, {"rotation", {0, half, 0, half}}},
+              {{"translation", {0, 5, 0}}, {"children", {2}}},
+              {{"mesh", 0}, {"scale", {2, 2, 2}}}}},
             {"scenes", {{{"nodes", {0, 1}}}}},
             {"scene", 0}};
   return s;
@@ -124,19 +129,27 @@ TEST(GlbReader, ReadsMeshoptCompressedQuantizedViews) {
   bin.insert(bin.end(), i.begin(), i.end());
   const auto meshopt = [](std::size_t offset, std::size_t length, int stride, int count, const char* mode) {
     return Json{{"EXT_meshopt_compression",
-                 {{"buffer", 0}, {"byteOffset", offset}, {"byteLength", length}, {"byteStride", stride},
-                  {"count", count}, {"mode", mode}}}};
+                 {{"buffer", 0},
+                  {"byteOffset", offset},
+                  {"byteLength", length},
+                  {"byteStride", stride},
+                  {"count", count},
+                  {"mode", mode}}}};
   };
   const double step = 100.0 / 65535;  // a 100 m square at 1,000,000 m east
   const Json gltf = {
       {"asset", {{"version", "2.0"}}},
       {"extensionsRequired", {"EXT_meshopt_compression", "KHR_mesh_quantization"}},
       {"buffers", {{{"byteLength", bin.size() + (4 - bin.size() % 4) % 4}}}},
-      {"bufferViews", {{{"buffer", 0}, {"byteLength", 32}, {"byteStride", 8},
-                        {"extensions", meshopt(0, v.size(), 8, 4, "ATTRIBUTES")}},
-                       {{"buffer", 0}, {"byteLength", 24}, {"extensions", meshopt(indexOffset, i.size(), 4, 6, "TRIANGLES")}}}},
-      {"accessors", {{{"bufferView", 0}, {"componentType", 5123}, {"count", 4}, {"type", "VEC3"}},
-                     {{"bufferView", 1}, {"componentType", 5125}, {"count", 6}, {"type", "SCALAR"}}}},
+      {"bufferViews",
+       {{{"buffer", 0},
+         {"byteLength", 32},
+         {"byteStride", 8},
+         {"extensions", meshopt(0, v.size(), 8, 4, "ATTRIBUTES")}},
+        {{"buffer", 0}, {"byteLength", 24}, {"extensions", meshopt(indexOffset, i.size(), 4, 6, "TRIANGLES")}}}},
+      {"accessors",
+       {{{"bufferView", 0}, {"componentType", 5123}, {"count", 4}, {"type", "VEC3"}},
+        {{"bufferView", 1}, {"componentType", 5125}, {"count", 6}, {"type", "SCALAR"}}}},
       {"meshes", {{{"primitives", {{{"attributes", {{"POSITION", 0}}}, {"indices", 1}}}}}}},
       {"nodes", {{{"mesh", 0}, {"translation", {1e6, 0, 0}}, {"scale", {step, step, step}}}}}};
   std::vector<std::string> warnings;
@@ -185,23 +198,27 @@ const Broken kBroken[] = {
      "node 0: its matrix, translation, rotation or scale is not numbers"},
     {"corrupt meshopt data",
      [](Sample& s) {
-       s.gltf["bufferViews"][0]["extensions"] = {{"EXT_meshopt_compression",
-                                                  {{"buffer", 0}, {"byteLength", 36}, {"byteStride", 12},
-                                                   {"count", 3}, {"mode", "ATTRIBUTES"}}}};
+       s.gltf["bufferViews"][0]["extensions"] = {
+           {"EXT_meshopt_compression",
+            {{"buffer", 0}, {"byteLength", 36}, {"byteStride", 12}, {"count", 3}, {"mode", "ATTRIBUTES"}}}};
      },
      "bufferView 0: the meshopt data is corrupt"},
     {"a meshopt count its bytes cannot hold",
      [](Sample& s) {
-       s.gltf["bufferViews"][0]["extensions"] = {{"EXT_meshopt_compression",
-                                                  {{"buffer", 0}, {"byteLength", 36}, {"byteStride", 12},
-                                                   {"count", 4000000000u}, {"mode", "ATTRIBUTES"}}}};
+       s.gltf["bufferViews"][0]["extensions"] = {
+           {"EXT_meshopt_compression",
+            {{"buffer", 0}, {"byteLength", 36}, {"byteStride", 12}, {"count", 4000000000u}, {"mode", "ATTRIBUTES"}}}};
      },
      "cannot come from 36 compressed bytes"},
     {"a meshopt filter",
      [](Sample& s) {
        s.gltf["bufferViews"][0]["extensions"] = {{"EXT_meshopt_compression",
-                                                  {{"buffer", 0}, {"byteLength", 36}, {"byteStride", 12}, {"count", 3},
-                                                   {"mode", "ATTRIBUTES"}, {"filter", "OCTAHEDRAL"}}}};
+                                                  {{"buffer", 0},
+                                                   {"byteLength", 36},
+                                                   {"byteStride", 12},
+                                                   {"count", 3},
+                                                   {"mode", "ATTRIBUTES"},
+                                                   {"filter", "OCTAHEDRAL"}}}};
      },
      "the meshopt filter \"OCTAHEDRAL\" is not read"},
     {"lines only", [](Sample& s) { s.gltf["meshes"][0]["primitives"][0]["mode"] = 1; }, "test.glb: no triangles"},
@@ -255,7 +272,8 @@ std::map<std::array<std::uint8_t, 4>, std::pair<std::size_t, double>> byColour(c
     const auto& [a, b, c] = mesh.triangles[t];
     auto& slot = out[{m.r, m.g, m.b, m.opacity}];
     ++slot.first;
-    slot.second += 0.5 * glm::length(glm::cross(mesh.positions[b] - mesh.positions[a], mesh.positions[c] - mesh.positions[a]));
+    slot.second +=
+        0.5 * glm::length(glm::cross(mesh.positions[b] - mesh.positions[a], mesh.positions[c] - mesh.positions[a]));
   }
   return out;
 }
