@@ -238,16 +238,14 @@ void EmbreeRenderer::Scene::tracePackets(const glm::dvec3& origin, const RayGene
         const int x = bx + lane % kWide, y = by + lane / kWide;
         valid[lane] = x < x1 && y < y1 ? -1 : 0;
         directions[lane] = valid[lane] ? generator.direction(x, y) : glm::dvec3(0, 0, 1);
+        // The lane gets the floats firstRay would give the ray alone.
         const RTCRayHit one = firstRay(origin, directions[lane], 0.0f);
-        packet.ray.org_x[lane] = one.ray.org_x;
-        packet.ray.org_y[lane] = one.ray.org_y;
-        packet.ray.org_z[lane] = one.ray.org_z;
-        packet.ray.dir_x[lane] = one.ray.dir_x;
-        packet.ray.dir_y[lane] = one.ray.dir_y;
-        packet.ray.dir_z[lane] = one.ray.dir_z;
-        packet.ray.tnear[lane] = one.ray.tnear;
-        packet.ray.tfar[lane] = one.ray.tfar;
-        packet.ray.time[lane] = one.ray.time;
+        float* const floats[] = {packet.ray.org_x, packet.ray.org_y, packet.ray.org_z, packet.ray.dir_x,
+                                 packet.ray.dir_y, packet.ray.dir_z, packet.ray.tnear, packet.ray.tfar,
+                                 packet.ray.time};
+        const float values[] = {one.ray.org_x, one.ray.org_y, one.ray.org_z, one.ray.dir_x, one.ray.dir_y,
+                                one.ray.dir_z, one.ray.tnear, one.ray.tfar, one.ray.time};
+        for (std::size_t f = 0; f < std::size(floats); ++f) floats[f][lane] = values[f];
         packet.ray.mask[lane] = one.ray.mask;
         packet.ray.id[lane] = one.ray.id;
         packet.ray.flags[lane] = one.ray.flags;
