@@ -64,12 +64,12 @@ std::size_t CityLoader::outstanding() const {
 // A complementary mesh through the same fetch as the HNIs: a GLB, or an OBJ and the MTL files it
 // names beside it (a missing MTL is the reader's warning, not an error).
 Result<TriangleMesh> CityLoader::readComplement(const std::string& location, std::size_t& bytes) const {
-  auto obj = fetch_(location);
-  if (!obj) return obj.error();
-  bytes += obj->size();
+  auto file = fetch_(location);
+  if (!file) return file.error();
+  bytes += file->size();
   if (scene::isGlbPath(location)) {
     std::vector<std::string> warnings;
-    return scene::readGlbBytes(*obj, location, warnings);
+    return scene::readGlbBytes(*file, location, warnings);
   }
   const scene::MtlReader mtl = [&](const std::string& path) -> Result<std::string> {
     auto text = fetch_(path);
@@ -79,7 +79,7 @@ Result<TriangleMesh> CityLoader::readComplement(const std::string& location, std
   };
   scene::ObjReadOptions options;
   options.oneMesh = true;
-  auto contents = scene::readObjText(std::string(obj->begin(), obj->end()), location, mtl, options);
+  auto contents = scene::readObjText(std::string(file->begin(), file->end()), location, mtl, options);
   if (!contents) return contents.error();
   return std::move(contents->objects.front());
 }

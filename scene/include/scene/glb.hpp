@@ -11,11 +11,14 @@
 // factor: sRGB bytes round(255 * factor), opacity round(255 * alpha) under alphaMode BLEND and
 // 255 otherwise. Normals, texture coordinates and textures are not read (renderers shade flat).
 //
+// A file may require EXT_meshopt_compression, KHR_mesh_quantization and KHR_materials_unlit (an
+// unlit material is read by its colour factor like any other).
+//
 // What it refuses, with one error naming the file and the glTF object: a truncated or malformed
-// container or JSON, an external or data: URI buffer, an accessor or view outside its data,
-// sparse accessors, meshopt filters, an index past its positions, a position that is not finite,
-// more than kMaxGlbTriangles triangles, and a file with no triangles. Points and lines are left
-// out with a warning.
+// container or JSON, another required extension, an external or data: URI buffer, an accessor or
+// view outside its data, sparse accessors, meshopt filters, an index past its positions, a
+// position that is not finite, more than kMaxGlbTriangles triangles, and a file with no
+// triangles. Points and lines are left out with a warning.
 #pragma once
 
 #include <cstddef>
