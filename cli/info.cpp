@@ -88,8 +88,9 @@ void printText(const InfoOptions& o, const PngFile& png, const HniStats& s) {
   std::printf("  image         %d x %d px, %lld bytes raw, %ju bytes PNG (%.1f:1)\n", s.width, s.height, s.bytesRaw,
               png.fileBytes, static_cast<double>(s.bytesRaw) / static_cast<double>(png.fileBytes));
   std::printf("  blocks        %d, DAG depth %d\n", s.blocks, s.dagDepth);
-  std::printf("  cells         %lld (%lld solid, %lld redirection, %lld empty)\n", s.cells, s.solidCells,
-              s.redirectionCells, s.cells - s.solidCells - s.redirectionCells);
+  std::printf("  cells         %lld (%lld solid, %lld plane, %lld redirection, %lld empty)\n", s.cells,
+              s.solidCells, s.planeCells, s.redirectionCells,
+              s.cells - s.solidCells - s.planeCells - s.redirectionCells);
   std::printf("  redirections  %d records\n", s.redirections);
   std::printf("  materials     %d, texture infos %d\n", s.materials, s.textures);
   std::printf("  waste         %.2f %% (%lld of %lld px unused)\n", s.wastePct,
@@ -117,6 +118,7 @@ void printJson(const InfoOptions& o, const PngFile& png, const HniStats& s) {
       {"blocks", s.blocks},
       {"cells", s.cells},
       {"solid_cells", s.solidCells},
+      {"plane_cells", s.planeCells},
       {"redirection_cells", s.redirectionCells},
       {"redirections", s.redirections},
       {"materials", s.materials},

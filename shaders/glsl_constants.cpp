@@ -118,6 +118,14 @@ int main(int argc, char** argv) {
   integer("kCellRedirection", f::kCellRedirection);
   integer("kCellFirstSolid", f::kCellFirstSolid);
   integer("kSolidCount", f::kSolidCount);
+  integer("kCellPlane", f::kCellPlane);
+  integer("kPlaneRecordHeadPixels", f::kPlaneRecordHeadPixels);
+  integer("kPixelsPerPlane", f::kPixelsPerPlane);
+  integer("kPlaneCombineOne", static_cast<int>(nut::PlaneCombine::One));
+  integer("kPlaneCombineBoth", static_cast<int>(nut::PlaneCombine::Both));
+  out << "const float kOctahedralCentre = " << glslFloat(f::kOctahedralCentre) << ";\n";
+  out << "const float kOctahedralSteps = " << glslFloat(f::kOctahedralSteps) << ";\n";
+  out << "const float kPlaneOffsetStepsPerUnit = " << glslFloat(f::kPlaneOffsetStepsPerUnit) << ";\n";
   integer("kYawSteps", f::kYawSteps);
   integer("kLodCodeOneMetre", f::kLodCodeOneMetre);
   integer("kLodCodesPerOctave", f::kLodCodesPerOctave);

@@ -169,3 +169,39 @@ uvec4 loadMaterial(int index) {
   int perRow = int(f.a);
   return hniTexel(origin + ivec2(kMaterialPixels * (index % perRow), index / perRow));
 }
+
+// A plane cell record (docs/FORMAT.md, version 3): material, combination and up to two planes in
+// the block's frame, units (nut::HniRayCaster::PlaneCell).
+struct PlaneCell {
+  vec3 normals[2];
+  float offsets[2];
+  int combine;
+  int material;
+};
+
+// The octahedral pair (e_x, e_y) as a unit normal, with nut::decodeNormalFloat's operations.
+vec3 decodeOctahedral(uint ex, uint ey) {
+  vec2 e = (vec2(float(ex), float(ey)) - kOctahedralCentre) / kOctahedralSteps;
+  float z = 1.0 - abs(e.x) - abs(e.y);
+  if (z < 0.0) e = (1.0 - abs(e.yx)) * vec2(e.x < 0.0 ? -1.0 : 1.0, e.y < 0.0 ? -1.0 : 1.0);
+  return normalize(vec3(e, z));
+}
+
+PlaneCell loadPlaneCell(ivec2 at) {
+  uvec4 head = hniTexel(at);
+  PlaneCell c;
+  c.material = int(head.r | (head.g << 8));
+  c.combine = int(head.a);
+  for (int p = 0; p < 2; ++p) {
+    c.normals[p] = vec3(0.0);
+    c.offsets[p] = 0.0;
+    if (p == 1 && c.combine == kPlaneCombineOne) break;
+    ivec2 first = at + ivec2(kPlaneRecordHeadPixels + kPixelsPerPlane * p, 0);
+    uvec4 ex = hniTexel(first);
+    uvec4 ey = hniTexel(first + ivec2(1, 0));
+    uvec4 o = hniTexel(first + ivec2(2, 0));
+    c.normals[p] = decodeOctahedral(readU24(ex), readU24(ey));
+    c.offsets[p] = float(int(readU24(o) | (o.a << 24))) / kPlaneOffsetStepsPerUnit;
+  }
+  return c;
+}

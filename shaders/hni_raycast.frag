@@ -246,20 +246,32 @@ void main() {
     uvec4 texel = cellTexel(B, L.cell);
     int g = int(texel.a);
     if (g >= kCellFirstSolid) {
-      vec3 size = L.hi - L.lo;
-      vec3 org = (L.o - L.tile - L.lo) / size;
-      vec3 dir = L.d / size;
-      SolidHit hit = intersectSolid(g - kCellFirstSolid, org, dir, t, tCellExit);
-      if (!hit.hit) continue;
-      uvec4 m = loadMaterial(int(texel.r | (texel.g << 8)));
-      // A hit where the ray enters the cell's visible part lies on that face (raycast.cpp).
-      vec3 normalWorld = hit.t == t ? L.entryNormal : normalize(L.toWorld * normalize(hit.normal / size));
+      float tHit;
+      vec3 normalWorld;  // a hit where the ray enters the cell's visible part lies on that face (raycast.cpp)
+      uvec4 m;
+      if (g == kCellPlane) {
+        // A plane cell: its planes are in the block's frame of tile 0 (docs/FORMAT.md).
+        PlaneCell cell = loadPlaneCell(unpackAddress(readU24(texel)));
+        vec3 span = intersectPlaneCut(cell.normals[0], cell.offsets[0], cell.normals[1], cell.offsets[1], cell.combine,
+                                      L.o - L.tile, L.d, t, tCellExit);
+        if (!(span.x <= span.y)) continue;
+        tHit = span.x;
+        normalWorld = span.z < 0.0 ? L.entryNormal : normalize(L.toWorld * cell.normals[int(span.z)]);
+        m = loadMaterial(cell.material);
+      } else {
+        vec3 size = L.hi - L.lo;
+        SolidHit hit = intersectSolid(g - kCellFirstSolid, (L.o - L.tile - L.lo) / size, L.d / size, t, tCellExit);
+        if (!hit.hit) continue;
+        tHit = hit.t;
+        normalWorld = hit.t == t ? L.entryNormal : normalize(L.toWorld * normalize(hit.normal / size));
+        m = loadMaterial(int(texel.r | (texel.g << 8)));
+      }
       vec3 colour = shade(vec3(m.rgb), normalWorld, direction);
       if (m.a == 255u) {
-        finishHit(hit.t, colour, direction, iterations);
+        finishHit(tHit, colour, direction, iterations);
         return;
       }
-      if (firstTranslucent < 0.0) firstTranslucent = hit.t;
+      if (firstTranslucent < 0.0) firstTranslucent = tHit;
       composite(colour, float(m.a) / 255.0);
       continue;
     }

@@ -100,3 +100,36 @@ SolidHit intersectSolid(int index, vec3 origin, vec3 dir, float tEnter, float tE
   }
   return SolidHit(true, t, normal);
 }
+
+// The part of origin + t dir, t in [tEnter, tExit], inside a plane cell's cut (nut::intersectPlaneCut)
+// of planes (n0, d0) and (n1, d1) combined as `combine` says: x = first parameter, y = last, z = the
+// plane the first lies on (-1: tEnter, the cell's entry face). An empty part has x > y.
+vec3 planeSpan(vec3 n, float offset, vec3 origin, vec3 dir) {
+  float along = dot(n, dir), room = offset - dot(n, origin);
+  if (along > 0.0) return vec3(-kInfinity, room / along, -1.0);
+  if (along < 0.0) return vec3(room / along, kInfinity, 0.0);
+  return room >= 0.0 ? vec3(-kInfinity, kInfinity, -1.0) : vec3(kInfinity, -kInfinity, -1.0);
+}
+
+vec3 clipSpan(vec3 s, float tEnter, float tExit) {
+  if (s.x <= tEnter) s.xz = vec2(tEnter, -1.0);
+  s.y = min(s.y, tExit);
+  return s;
+}
+
+vec3 intersectPlaneCut(vec3 n0, float d0, vec3 n1, float d1, int combine, vec3 origin, vec3 dir, float tEnter,
+                       float tExit) {
+  vec3 span = clipSpan(planeSpan(n0, d0, origin, dir), tEnter, tExit);
+  if (combine == kPlaneCombineOne) return span;
+  vec3 second = clipSpan(planeSpan(n1, d1, origin, dir), tEnter, tExit);
+  if (second.z == 0.0) second.z = 1.0;
+  if (combine == kPlaneCombineBoth) {
+    if (second.x > span.x) span.xz = second.xz;
+    span.y = min(span.y, second.y);
+  } else if (second.x <= second.y) {
+    if (span.x > span.y) return second;
+    if (second.x < span.x) span.xz = second.xz;
+    span.y = max(span.y, second.y);
+  }
+  return span;
+}

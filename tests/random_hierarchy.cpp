@@ -4,6 +4,8 @@
 #include <cmath>
 #include <random>
 
+#include <glm/geometric.hpp>
+
 namespace nut::testing {
 
 Hierarchy randomHierarchy(std::uint64_t seed, const RandomHierarchyOptions& o) {
@@ -51,11 +53,31 @@ Hierarchy randomHierarchy(std::uint64_t seed, const RandomHierarchyOptions& o) {
         block.redirections.push_back(red);
       }
     }
+    if (o.planeCellShare > 0) {
+      const glm::dvec3 size = block.sizeM();
+      const auto randomPlane = [&] {
+        glm::dvec3 n;
+        do n = {uniformReal(-1, 1), uniformReal(-1, 1), uniformReal(-1, 1)};
+        while (glm::length(n) < 0.1 || glm::length(n) > 1);
+        n = glm::normalize(n);
+        // Some planes nearly along an axis, where a ray grazes many cells.
+        if (uniformInt(0, 3) == 0) n = glm::normalize(glm::dvec3(n.x, n.y * 1e-3, n.z * 1e-4));
+        const glm::dvec3 through{uniformReal(0, size.x), uniformReal(0, size.y), uniformReal(0, size.z)};
+        return CutPlane{n, glm::dot(n, through)};
+      };
+      const int cuts = uniformInt(1, 4);
+      for (int k = 0; k < cuts; ++k)
+        block.cuts.push_back({{randomPlane(), randomPlane()}, static_cast<PlaneCombine>(uniformInt(1, 3))});
+    }
     for (Cell& c : block.cells) {
       const int kind = uniformInt(0, 9);
       if (kind < 3) continue;  // empty
       if (kind < 5 && canRedirect) {
         c = Cell::redirect(static_cast<std::uint32_t>(uniformInt(0, static_cast<int>(block.redirections.size()) - 1)));
+      } else if (o.planeCellShare > 0 && uniformReal(0, 1) < o.planeCellShare) {
+        c = Cell::planeCell(static_cast<std::uint32_t>(uniformInt(0, static_cast<int>(block.cuts.size()) - 1)),
+                            static_cast<std::uint16_t>(uniformInt(0, materials - 1)),
+                            static_cast<std::uint8_t>(uniformInt(0, textures)));
       } else {
         c = Cell::solidCell(Solid{static_cast<std::uint8_t>(uniformInt(0, kSolidCount - 1))},
                             static_cast<std::uint16_t>(uniformInt(0, materials - 1)),

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstddef>
 
+#include <glm/geometric.hpp>
 #include <glm/matrix.hpp>
 #include <glm/vec3.hpp>
 
@@ -30,7 +31,7 @@ inline glm::dvec3 redirectedPoint(const Hierarchy& h, const Block& b, const std:
 }
 
 // What point p (block-local metres) of block `id` holds, followed through its redirections: the
-// material of the solid it is inside, or -1.
+// material of the solid or plane cell it is inside, or -1.
 inline int contentAt(const Hierarchy& h, BlockId id, const glm::dvec3& p) {
   const Block& b = h.blocks[id];
   std::array<int, 3> c{};
@@ -44,6 +45,16 @@ inline int contentAt(const Hierarchy& h, BlockId id, const glm::dvec3& p) {
   }
   const Cell& cell = b.cell(c[0], c[1], c[2]);
   if (cell.kind == CellKind::Solid) return solidContains(cell.solid, unit) ? cell.material : -1;
+  if (cell.kind == CellKind::Plane) {
+    // The cut's planes are in the block's frame: p itself, not the cell's unit cube.
+    const PlaneCut& cut = b.cuts[cell.cut];
+    const bool first = glm::dot(cut.planes[0].normal, p) <= cut.planes[0].offsetM;
+    const bool second = glm::dot(cut.planes[1].normal, p) <= cut.planes[1].offsetM;
+    const bool inside = cut.combine == PlaneCombine::One    ? first
+                        : cut.combine == PlaneCombine::Both ? first && second
+                                                            : first || second;
+    return inside ? cell.material : -1;
+  }
   if (cell.kind == CellKind::Empty) return -1;
   const Redirection& r = b.redirections[cell.redirection];
   return contentAt(h, r.target, redirectedPoint(h, b, c, r, p));

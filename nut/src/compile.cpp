@@ -65,9 +65,23 @@ struct RecordKey {
   friend auto operator<=>(const RecordKey&, const RecordKey&) = default;
 };
 
+// A plane cell record as encoded; equal keys share one record.
+struct PlaneRecordKey {
+  std::array<EncodedPlane, 2> planes{};  // the second is zero for one plane
+  PlaneCombine combine = PlaneCombine::One;
+  std::uint16_t material = 0;
+  std::uint8_t texture = 0;
+  int pixels() const {
+    return format::kPlaneRecordHeadPixels + format::kPixelsPerPlane * (combine == PlaneCombine::One ? 1 : 2);
+  }
+  friend auto operator<=>(const PlaneRecordKey&, const PlaneRecordKey&) = default;
+};
+
 struct BlockPlan {
   std::array<AxisIndex, 3> axes;
   std::vector<int> records;       // global record index of each of the block's redirections
+  // Global plane record index per (cut, material, texture) the block's plane cells use.
+  std::map<std::tuple<std::uint32_t, std::uint16_t, std::uint8_t>, int> planeRecords;
   std::array<int, 3> metaItem{};  // the listed metadata item each axis uses (items are shared)
   int dataItem = 0;               // the listed data component (shared by blocks with equal cells)
 };
@@ -75,8 +89,13 @@ struct BlockPlan {
 struct Plan {
   std::vector<BlockPlan> blocks;
   std::vector<RecordKey> records;
+  std::vector<PlaneRecordKey> planeRecords;
   std::vector<std::array<std::int64_t, 3>> textureOffsets;
 };
+
+int planeRecordOf(const BlockPlan& plan, const Cell& cell) {
+  return plan.planeRecords.at({cell.cut, cell.material, cell.texture});
+}
 
 Result<AxisIndex> planAxis(const Block& block, int a, const CompileOptions& options, const std::string& where) {
   std::vector<std::int64_t> bounds;
@@ -105,6 +124,7 @@ Result<Plan> planBlocks(const Hierarchy& h, const CompileOptions& options) {
   Plan plan;
   plan.blocks.resize(h.blocks.size());
   std::map<RecordKey, int> recordIndex;
+  std::map<PlaneRecordKey, int> planeRecordIndex;
   for (std::size_t b = 0; b < h.blocks.size(); ++b) {
     const Block& block = h.blocks[b];
     BlockPlan& blockPlan = plan.blocks[b];
@@ -128,6 +148,22 @@ Result<Plan> planBlocks(const Hierarchy& h, const CompileOptions& options) {
       auto [it, inserted] = recordIndex.try_emplace(*key, static_cast<int>(plan.records.size()));
       if (inserted) plan.records.push_back(*key);
       blockPlan.records[cell.redirection] = it->second;
+    }
+    for (const Cell& cell : block.cells) {
+      if (cell.kind != CellKind::Plane || blockPlan.planeRecords.contains({cell.cut, cell.material, cell.texture}))
+        continue;
+      const PlaneCut& cut = block.cuts[cell.cut];
+      PlaneRecordKey key{{}, cut.combine, cell.material, cell.texture};
+      for (int p = 0; p < cut.planeCount(); ++p) {
+        const auto encoded = encodePlane(cut.planes[static_cast<std::size_t>(p)]);
+        if (!encoded)
+          return Error{where + " plane cut " + std::to_string(cell.cut) + " plane " + std::to_string(p) +
+                       ": offset beyond the encodable +-33.5 km"};
+        key.planes[static_cast<std::size_t>(p)] = *encoded;
+      }
+      auto [it, inserted] = planeRecordIndex.try_emplace(key, static_cast<int>(plan.planeRecords.size()));
+      if (inserted) plan.planeRecords.push_back(key);
+      blockPlan.planeRecords[{cell.cut, cell.material, cell.texture}] = it->second;
     }
   }
   if (plan.records.size() > 0xffff) return Error{"more than 65535 distinct redirection records"};
@@ -164,16 +200,18 @@ std::vector<std::int64_t> dataKey(const Block& block, const BlockPlan& plan) {
            static_cast<std::int64_t>(cell.texture) << 40;
     else if (cell.kind == CellKind::Redirection)
       k |= static_cast<std::int64_t>(plan.records[cell.redirection]) << 8;
+    else if (cell.kind == CellKind::Plane)
+      k |= static_cast<std::int64_t>(planeRecordOf(plan, cell)) << 8;
     key.push_back(k);
   }
   return key;
 }
 
-enum class ItemKind { BlockTable, Header, Metadata, Data, Records, Materials, Textures };
+enum class ItemKind { BlockTable, Header, Metadata, Data, Records, PlaneRecord, Materials, Textures };
 struct ItemInfo {
   ItemKind kind;
   int block = 0;  // Header
-  int first = 0;  // Records: first record index in the chunk
+  int first = 0;  // Records: first record index in the chunk; PlaneRecord: its index
 };
 
 // The rectangles to pack, each with what it holds.
@@ -220,6 +258,8 @@ ItemList listItems(const Hierarchy& h, Plan& plan) {
     const int count = std::min(format::kRedirectionsPerItem, recordCount - first);
     list.add({ItemKind::Records, 0, first}, count * format::kRedirectionPixels, 1, true);
   }
+  for (std::size_t r = 0; r < plan.planeRecords.size(); ++r)
+    list.add({ItemKind::PlaneRecord, 0, static_cast<int>(r)}, plan.planeRecords[r].pixels(), 1, false);
   const int materialCount = static_cast<int>(h.materials.size());
   list.materialsPerRow = std::min(materialCount, format::kMaterialsPerRow);
   if (materialCount > 0)
@@ -272,6 +312,7 @@ struct Placed {
   std::vector<packer::Rect> header, data;         // per block
   std::vector<std::array<packer::Rect, 3>> meta;  // per block and axis
   std::vector<TexelAddress> record;               // per global record
+  std::vector<TexelAddress> planeRecord;          // per global plane record
 };
 
 Placed locate(const Plan& plan, const ItemList& list, const packer::Layout& layout) {
@@ -288,6 +329,7 @@ Placed locate(const Plan& plan, const ItemList& list, const packer::Layout& layo
   }
   const int recordCount = static_cast<int>(plan.records.size());
   at.record.resize(plan.records.size());
+  at.planeRecord.resize(plan.planeRecords.size());
   for (const packer::Placement& p : layout.placements) {
     const ItemInfo& info = list.infos[static_cast<std::size_t>(p.id)];
     switch (info.kind) {
@@ -305,6 +347,9 @@ Placed locate(const Plan& plan, const ItemList& list, const packer::Layout& layo
         break;
       case ItemKind::Textures:
         at.textures = p.rect;
+        break;
+      case ItemKind::PlaneRecord:
+        at.planeRecord[static_cast<std::size_t>(info.first)] = {p.rect.x, p.rect.y};
         break;
       case ItemKind::Records:
         for (int r = info.first; r < std::min(info.first + format::kRedirectionsPerItem, recordCount); ++r)
@@ -374,7 +419,7 @@ void writeHeader(Image& image, const Block& block, const BlockPlan& blockPlan, c
 
 // The data component: z tiled along x, top cell row first.
 void writeData(Image& image, const Block& block, const BlockPlan& blockPlan, const packer::Rect& dataRect,
-               const std::vector<TexelAddress>& recordAt) {
+               const Placed& at) {
   const int nx = block.cellCount(0), ny = block.cellCount(1), nz = block.cellCount(2);
   for (int z = 0; z < nz; ++z)
     for (int y = 0; y < ny; ++y)
@@ -386,9 +431,13 @@ void writeData(Image& image, const Block& block, const BlockPlan& blockPlan, con
           d[2] = cell.texture;
           d[3] = static_cast<std::uint8_t>(format::kCellFirstSolid + cell.solid.index);
         } else if (cell.kind == CellKind::Redirection) {
-          const TexelAddress r = recordAt[static_cast<std::size_t>(blockPlan.records[cell.redirection])];
+          const TexelAddress r = at.record[static_cast<std::size_t>(blockPlan.records[cell.redirection])];
           d[0] = static_cast<std::uint8_t>(r.u), d[1] = static_cast<std::uint8_t>(r.v);
           d[3] = format::kCellRedirection;
+        } else if (cell.kind == CellKind::Plane) {
+          const TexelAddress r = at.planeRecord[static_cast<std::size_t>(planeRecordOf(blockPlan, cell))];
+          writeU24(d, packAddress(r.u, r.v));
+          d[3] = format::kCellPlane;
         }
       }
 }
@@ -404,6 +453,23 @@ void writeRecord(Image& image, const RecordKey& record, TexelAddress at, const p
   std::uint8_t* q = image.at(at.u + 3, at.v);
   q[0] = static_cast<std::uint8_t>(targetHeader.x), q[1] = static_cast<std::uint8_t>(targetHeader.y);
   writeU16(q + 2, record.yaw);
+}
+
+void writePlaneRecord(Image& image, const PlaneRecordKey& record, TexelAddress at) {
+  std::uint8_t* q = image.at(at.u, at.v);
+  writeU16(q, record.material);
+  q[2] = record.texture;
+  q[3] = static_cast<std::uint8_t>(record.combine);
+  const int planes = (record.pixels() - format::kPlaneRecordHeadPixels) / format::kPixelsPerPlane;
+  for (int p = 0; p < planes; ++p) {
+    const EncodedPlane& e = record.planes[static_cast<std::size_t>(p)];
+    const int first = at.u + format::kPlaneRecordHeadPixels + format::kPixelsPerPlane * p;
+    writeU24(image.at(first, at.v), e.octX);
+    writeU24(image.at(first + 1, at.v), e.octY);
+    const auto offset = static_cast<std::uint32_t>(e.offset);
+    writeU24(image.at(first + 2, at.v), offset & 0xffffff);
+    image.at(first + 2, at.v)[3] = static_cast<std::uint8_t>(offset >> 24);
+  }
 }
 
 // Materials and texture infos, row-major in their rectangles.
@@ -454,7 +520,7 @@ Result<Image> compile(const Hierarchy& h, const CompileOptions& options) {
       const packer::Rect& r = at.meta[b][a];
       encodeAxisIndex(blockPlan.axes[a], image.at(r.x, r.y), image.at(r.x, r.y + 1));
     }
-    writeData(image, h.blocks[b], blockPlan, at.data[b], at.record);
+    writeData(image, h.blocks[b], blockPlan, at.data[b], at);
   }
   bool anyLod = false;
   for (std::size_t r = 0; r < planned->records.size(); ++r) {
@@ -463,7 +529,12 @@ Result<Image> compile(const Hierarchy& h, const CompileOptions& options) {
     anyLod = anyLod || lod != 0;
     writeRecord(image, planned->records[r], at.record[r], at.header[target], lod);
   }
-  if (anyLod) image.at(format::kFileMagic, 0)[3] = format::kVersionLod;
+  for (std::size_t r = 0; r < planned->planeRecords.size(); ++r)
+    writePlaneRecord(image, planned->planeRecords[r], at.planeRecord[r]);
+  if (!planned->planeRecords.empty())
+    image.at(format::kFileMagic, 0)[3] = format::kVersionPlanes;
+  else if (anyLod)
+    image.at(format::kFileMagic, 0)[3] = format::kVersionLod;
   writeMaterialsAndTextures(image, h, *planned, at);
   return image;
 }

@@ -44,7 +44,17 @@ Result<Hierarchy> decode(const Image& image) {
         for (int x = 0; x < header.cells.x; ++x) {
           const CellTexel t = view.cell(header, {x, y, z});
           Cell& cell = block.cell(x, y, z);
-          if (t.g >= format::kCellFirstSolid) {
+          if (t.g == format::kCellPlane) {
+            const PlaneRecord r = view.planeRecord(t.planeRecord);
+            PlaneCut cut;
+            cut.combine = static_cast<PlaneCombine>(r.combine);
+            for (int p = 0; p < r.planeCount(); ++p)
+              cut.planes[static_cast<std::size_t>(p)] = decodePlane(r.planes[static_cast<std::size_t>(p)]);
+            // Cuts are listed in order of first use, equal ones once (what quantized() produces).
+            auto it = std::find(block.cuts.begin(), block.cuts.end(), cut);
+            if (it == block.cuts.end()) it = block.cuts.insert(block.cuts.end(), cut);
+            cell = Cell::planeCell(static_cast<std::uint32_t>(it - block.cuts.begin()), r.material, r.texture);
+          } else if (t.g >= format::kCellFirstSolid) {
             cell = Cell::solidCell(Solid{static_cast<std::uint8_t>(t.g - format::kCellFirstSolid)}, t.material, t.texture);
           } else if (t.g == format::kCellRedirection) {
             auto [it, inserted] = recordIndex.try_emplace({t.redirection.u, t.redirection.v},

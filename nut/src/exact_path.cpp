@@ -165,6 +165,42 @@ class ExactTracer {
     return true;
   }
 
+  // Where the ray meets a cell's content within [s, e], and the content's own unit normal in the
+  // block's frame there (none where that is the face the ray entered the cell by).
+  struct CellHit {
+    double t;
+    std::optional<glm::dvec3> normal;
+  };
+
+  std::optional<CellHit> solidHit(Solid solid, const BlockFrame& frame, const glm::dvec3& cellMin,
+                                  const glm::dvec3& cellSize, double s, double e) const {
+    // The solid lives in the cell's unit cube; scaling the direction keeps t the world distance.
+    const glm::dvec3 unitOrigin = (frame.origin - cellMin) / cellSize;
+    const glm::dvec3 unitDirection = frame.direction / cellSize;
+    const auto hit = intersectSolid<double>(solid, unitOrigin, unitDirection, s, e);
+    if (!hit) return std::nullopt;
+    if (options_.minThicknessM > 0) {
+      // The last point inside the solid: the first hit of the reversed ray from the cell exit.
+      const auto last =
+          intersectSolid<double>(solid, unitOrigin + e * unitDirection, -unitDirection, 0.0, e - hit->t);
+      if (last && e - last->t - hit->t < options_.minThicknessM) return std::nullopt;
+    }
+    if (hit->t == s) return CellHit{hit->t, std::nullopt};
+    return CellHit{hit->t, glm::normalize(hit->normal / cellSize)};
+  }
+
+  // The planes are in the frame of the block's tile 0; the ray is moved into the cell's tile.
+  std::optional<CellHit> planeHit(const PlaneCut& cut, const BlockFrame& frame, const glm::dvec3& tileStart,
+                                  double s, double e) const {
+    const std::array<glm::dvec3, 2> normals{cut.planes[0].normal, cut.planes[1].normal};
+    const std::array<double, 2> offsets{cut.planes[0].offsetM, cut.planes[1].offsetM};
+    const auto span =
+        intersectPlaneCut<double>(normals, offsets, cut.combine, frame.origin - tileStart, frame.direction, s, e);
+    if (!span || (options_.minThicknessM > 0 && span->tOut - span->tIn < options_.minThicknessM)) return std::nullopt;
+    if (span->plane < 0) return CellHit{span->tIn, std::nullopt};
+    return CellHit{span->tIn, normals[static_cast<std::size_t>(span->plane)]};
+  }
+
   // One cell: the sub-interval [s, e] of the ray, all inside one cell of the frame's block.
   bool visitCell(const BlockFrame& frame, const Block& block, double s, double e, const EntryPlane& entry) {
     if (++cellsVisited_ > kExactMaxCells) {
@@ -174,33 +210,26 @@ class ExactTracer {
     ++result_.iterations;
     const glm::dvec3 mid = frame.origin + (0.5 * (s + e)) * frame.direction;
     glm::ivec3 index(0);
-    glm::dvec3 cellMin(0.0), cellSize(1.0);
+    glm::dvec3 tileStart(0.0), cellMin(0.0), cellSize(1.0);
     for (int a = 0; a < 3; ++a) {
       const auto& bounds = block.boundsM[a];
       // On a wrapped axis the midpoint is reduced into tile 0 and the cell is placed back in its tile.
-      const double tileStart = frame.wrap[a] ? std::floor(mid[a] / bounds.back()) * bounds.back() : 0.0;
-      index[a] = cellAt(bounds, mid[a] - tileStart);
+      tileStart[a] = frame.wrap[a] ? std::floor(mid[a] / bounds.back()) * bounds.back() : 0.0;
+      index[a] = cellAt(bounds, mid[a] - tileStart[a]);
       const auto i = static_cast<std::size_t>(index[a]);
-      cellMin[a] = tileStart + bounds[i];
+      cellMin[a] = tileStart[a] + bounds[i];
       cellSize[a] = bounds[i + 1] - bounds[i];
     }
     const Cell& cell = block.cell(index.x, index.y, index.z);
 
-    if (cell.kind == CellKind::Solid) {
-      // The solid lives in the cell's unit cube; scaling the direction keeps t the world distance.
-      const glm::dvec3 unitOrigin = (frame.origin - cellMin) / cellSize;
-      const glm::dvec3 unitDirection = frame.direction / cellSize;
-      const auto hit = intersectSolid<double>(cell.solid, unitOrigin, unitDirection, s, e);
+    if (cell.kind == CellKind::Solid || cell.kind == CellKind::Plane) {
+      const std::optional<CellHit> hit = cell.kind == CellKind::Solid
+                                             ? solidHit(cell.solid, frame, cellMin, cellSize, s, e)
+                                             : planeHit(block.cuts[cell.cut], frame, tileStart, s, e);
       if (!hit) return false;
-      if (options_.minThicknessM > 0) {
-        // The last point inside the solid: the first hit of the reversed ray from the cell exit.
-        const auto last = intersectSolid<double>(cell.solid, unitOrigin + e * unitDirection, -unitDirection,
-                                                 0.0, e - hit->t);
-        if (last && e - last->t - hit->t < options_.minThicknessM) return false;
-      }
       EntryPlane surface = entry;
-      if (hit->t != s) {
-        glm::dvec3 n = glm::normalize(hit->normal / cellSize);
+      if (hit->normal) {
+        glm::dvec3 n = *hit->normal;
         if (glm::dot(n, frame.direction) > 0) n = -n;
         surface = {depth(), frame.toWorld * n};
       }

@@ -8,6 +8,8 @@
 #include <numbers>
 #include <string>
 
+#include <glm/geometric.hpp>
+
 #include <nut/format.hpp>
 #include <nut/units.hpp>
 
@@ -140,19 +142,31 @@ Status checkHierarchy(const Hierarchy& h) {
                    " is not finite and non-negative"};
     for (std::size_t i = 0; i < block.cells.size(); ++i) {
       const Cell& c = block.cells[i];
-      if (c.kind == CellKind::Solid) {
-        if (c.solid.index >= kSolidCount)
-          return Error{cellName(b, block, i) + ": solid " + std::to_string(c.solid.index) +
-                       " out of range"};
-        if (c.material >= h.materials.size())
-          return Error{cellName(b, block, i) + ": material " + std::to_string(c.material) +
-                       " out of range (" + std::to_string(h.materials.size()) + " materials)"};
-        if (c.texture > h.textures.size())
-          return Error{cellName(b, block, i) + ": texture " + std::to_string(c.texture) +
-                       " out of range (" + std::to_string(h.textures.size()) + " textures)"};
-      } else if (c.kind == CellKind::Redirection && c.redirection >= block.redirections.size()) {
-        return Error{cellName(b, block, i) + ": redirection " + std::to_string(c.redirection) +
-                     " out of range"};
+      if (c.kind == CellKind::Solid && c.solid.index >= kSolidCount)
+        return Error{cellName(b, block, i) + ": solid " + std::to_string(c.solid.index) + " out of range"};
+      if (c.kind == CellKind::Plane && c.cut >= block.cuts.size())
+        return Error{cellName(b, block, i) + ": plane cut " + std::to_string(c.cut) + " out of range"};
+      if (c.kind == CellKind::Redirection && c.redirection >= block.redirections.size())
+        return Error{cellName(b, block, i) + ": redirection " + std::to_string(c.redirection) + " out of range"};
+      if (c.hasMaterial() && c.material >= h.materials.size())
+        return Error{cellName(b, block, i) + ": material " + std::to_string(c.material) + " out of range (" +
+                     std::to_string(h.materials.size()) + " materials)"};
+      if (c.hasMaterial() && c.texture > h.textures.size())
+        return Error{cellName(b, block, i) + ": texture " + std::to_string(c.texture) + " out of range (" +
+                     std::to_string(h.textures.size()) + " textures)"};
+    }
+    for (std::size_t k = 0; k < block.cuts.size(); ++k) {
+      const PlaneCut& cut = block.cuts[k];
+      const std::string cw = where + " plane cut " + std::to_string(k);
+      if (cut.combine != PlaneCombine::One && cut.combine != PlaneCombine::Both &&
+          cut.combine != PlaneCombine::Either)
+        return Error{cw + ": combination " + std::to_string(static_cast<int>(cut.combine)) + " is not 1, 2 or 3"};
+      for (int p = 0; p < cut.planeCount(); ++p) {
+        const CutPlane& plane = cut.planes[static_cast<std::size_t>(p)];
+        const double length = glm::length(plane.normal);
+        if (!std::isfinite(length) || std::abs(length - 1.0) > 1e-6 || !std::isfinite(plane.offsetM))
+          return Error{cw + " plane " + std::to_string(p) +
+                       ": normal is not a finite unit vector or offset not finite"};
       }
     }
     for (std::size_t r = 0; r < block.redirections.size(); ++r) {
@@ -207,11 +221,24 @@ Hierarchy quantized(const Hierarchy& h) {
     // cells (x fastest): that is the order decode() recovers them in.
     for (Redirection& r : block.redirections)
       for (int a = 0; a < 3; ++a) r.offsetM[a] = snapToUnits(r.offsetM[a]);
+    // Plane cuts likewise: one per distinct encoded cut, in order of first use.
+    std::vector<PlaneCut> usedCuts;
     std::vector<Redirection> used;
     for (Cell& c : block.cells) {
+      if (c.kind == CellKind::Plane) {
+        PlaneCut cut = block.cuts[c.cut];
+        for (int p = 0; p < 2; ++p)
+          cut.planes[static_cast<std::size_t>(p)] =
+              p < cut.planeCount() ? quantizedPlane(cut.planes[static_cast<std::size_t>(p)]) : CutPlane{};
+        auto it = std::find(usedCuts.begin(), usedCuts.end(), cut);
+        if (it == usedCuts.end()) it = usedCuts.insert(usedCuts.end(), cut);
+        c = Cell::planeCell(static_cast<std::uint32_t>(it - usedCuts.begin()), c.material, c.texture);
+        continue;
+      }
       if (c.kind != CellKind::Redirection) {
         if (c.kind == CellKind::Empty) c = Cell::empty();
         c.redirection = 0;
+        c.cut = 0;
         continue;
       }
       const Redirection& r = block.redirections[c.redirection];
@@ -220,6 +247,7 @@ Hierarchy quantized(const Hierarchy& h) {
       c = Cell::redirect(static_cast<std::uint32_t>(it - used.begin()));
     }
     block.redirections = std::move(used);
+    block.cuts = std::move(usedCuts);
   }
   // A footprint is kept in the records that redirect to its block, in the code's steps.
   std::vector<bool> targeted(q.blocks.size(), false);

@@ -155,7 +155,7 @@ class Exporter {
         if (pending) continue;
         bool solid = false;
         for (const Cell& c : block.cells)
-          solid |= c.kind == CellKind::Solid ||
+          solid |= c.kind == CellKind::Solid || c.kind == CellKind::Plane ||
                    (c.kind == CellKind::Redirection && hasSolid(block.redirections[c.redirection].target));
         content_[b] = solid ? Content::Solid : Content::Empty;
         stack.pop_back();
@@ -324,11 +324,20 @@ class Exporter {
   }
 
   void emitCut(const Instance& inst, const Cell& cell, const Box& box, const std::vector<Plane>& cutting) {
-    const UnitSolid& unit = unitSolid(cell.solid, box.hi - box.lo);
-    std::vector<Triangle> triangles;
-    for (Piece piece : unit.pieces) {
+    std::vector<Piece> pieces = unitSolid(cell.solid, box.hi - box.lo).pieces;
+    for (Piece& piece : pieces)
       for (Face& f : piece)
-        for (dvec3& p : f.points) p = inst.frame.apply(box.at(p));
+        for (dvec3& p : f.points) p = box.at(p);
+    emitPieces(inst, std::move(pieces), cutting, cell.material);
+  }
+
+  // Pieces in block-local coordinates, turned into the root frame and clipped by `cutting`.
+  void emitPieces(const Instance& inst, std::vector<Piece> pieces, const std::vector<Plane>& cutting,
+                  std::uint16_t material) {
+    std::vector<Triangle> triangles;
+    for (Piece& piece : pieces) {
+      for (Face& f : piece)
+        for (dvec3& p : f.points) p = inst.frame.apply(p);
       bool left = true;
       for (const Plane& plane : cutting)
         if (!(left = clipPiece(piece, plane))) break;
@@ -336,7 +345,51 @@ class Exporter {
       for (const Face& f : piece)
         if (!f.internal) triangulateConvex(f.points, triangles);
     }
-    for (const Triangle& t : triangles) triangle(vertex(t[0]), vertex(t[1]), vertex(t[2]), cell.material);
+    for (const Triangle& t : triangles) triangle(vertex(t[0]), vertex(t[1]), vertex(t[2]), material);
+  }
+
+  // A plane cell: its box clipped by its planes (block frame, moved into the tile), one convex
+  // piece; a valley is three, inside both planes, the first only and the second only, whose shared
+  // caps are internal. The box's corners are those of the neighbouring cells, and a plane's
+  // crossings with a shared edge are computed alike, so the caps of neighbours meet edge to edge.
+  void emitPlaneCell(const Instance& inst, const Cell& cell, const dvec3& tile, const Box& box,
+                     const std::vector<Plane>& cutting) {
+    const Block& block = h_.blocks[inst.block];
+    const PlaneCut& cut = block.cuts[cell.cut];
+    const dvec3 tileOrigin = tile * block.sizeM();
+    std::array<Plane, 2> planes{};
+    for (std::size_t p = 0; p < 2; ++p)
+      planes[p] = {cut.planes[p].normal, cut.planes[p].offsetM + glm::dot(cut.planes[p].normal, tileOrigin)};
+    const auto flipped = [](const Plane& p) { return Plane{-p.normal, -p.offset}; };
+    Piece cube = unitSolid(Solid{0}, box.hi - box.lo).pieces.front();
+    for (Face& f : cube)
+      for (dvec3& p : f.points) p = box.at(p);
+    const auto clipped = [&](std::initializer_list<Plane> by) -> std::optional<Piece> {
+      Piece piece = cube;
+      for (const Plane& plane : by)
+        if (!clipPiece(piece, plane)) return std::nullopt;
+      return piece;
+    };
+    std::vector<Piece> pieces;
+    if (cut.combine != PlaneCombine::Either) {
+      const auto piece = cut.combine == PlaneCombine::One ? clipped({planes[0]}) : clipped({planes[0], planes[1]});
+      if (piece) pieces.push_back(*piece);
+    } else {
+      auto both = clipped({planes[0], planes[1]});
+      auto firstOnly = clipped({planes[0], flipped(planes[1])});
+      auto secondOnly = clipped({flipped(planes[0]), planes[1]});
+      const auto markInternal = [](Piece& piece, const Plane& plane) {
+        for (Face& f : piece)
+          if (std::all_of(f.points.begin(), f.points.end(),
+                          [&](const dvec3& p) { return std::abs(plane.distance(p)) <= kOnPlaneM; }))
+            f.internal = true;
+      };
+      if (both && firstOnly) markInternal(*both, planes[1]), markInternal(*firstOnly, planes[1]);
+      if (both && secondOnly) markInternal(*both, planes[0]), markInternal(*secondOnly, planes[0]);
+      for (auto* piece : {&both, &firstOnly, &secondOnly})
+        if (*piece) pieces.push_back(**piece);
+    }
+    emitPieces(inst, std::move(pieces), cutting, cell.material);
   }
 
   void redirect(const Instance& inst, const glm::ivec3& c, const Box& box, const std::vector<Plane>& cutting) {
@@ -439,6 +492,8 @@ class Exporter {
           if (!cutting) continue;
           if (cell.kind == CellKind::Redirection)
             redirect(inst, c, box, *cutting);
+          else if (cell.kind == CellKind::Plane)
+            emitPlaneCell(inst, cell, tile, box, *cutting);
           else if (cutting->empty())
             emitWhole(inst, tile, *tilePlanes, c, box);
           else

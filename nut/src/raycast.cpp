@@ -209,6 +209,7 @@ HniRayCaster::HniRayCaster(const Image& image, const glm::dvec3& originM, const 
       for (int y = 0; y < n.y; ++y)
         for (int x = 0; x < n.x; ++x) {
           const std::uint8_t* texel = block.cellTexel({x, y, z});
+          if (texel[3] == format::kCellPlane) addPlaneCell(readU24(texel));
           if (texel[3] != format::kCellRedirection) continue;
           int& index = redirectByRecord_[static_cast<std::size_t>(texel[1] * 256 + texel[0])];
           if (index >= 0) continue;
@@ -219,6 +220,21 @@ HniRayCaster::HniRayCaster(const Image& image, const glm::dvec3& originM, const 
                                 static_cast<float>(lodFootprintM(r.lodCode) / format::kMetresPerUnit)});
         }
   }
+}
+
+void HniRayCaster::addPlaneCell(std::uint32_t packedRecord) {
+  const auto [it, added] = planeCellByRecord_.try_emplace(packedRecord, static_cast<int>(planeCells_.size()));
+  if (!added) return;
+  const PlaneRecord record = view_.planeRecord(unpackAddress(packedRecord));
+  PlaneCell cell{{glm::vec3(0.0f), glm::vec3(0.0f)}, {0.0f, 0.0f}, static_cast<PlaneCombine>(record.combine),
+                 record.material};
+  // Decoded in float with the shader's operations, so that both casters cut the same planes.
+  for (std::size_t p = 0; p < static_cast<std::size_t>(record.planeCount()); ++p) {
+    const EncodedPlane& e = record.planes[p];
+    cell.normals[p] = decodeNormalFloat(e.octX, e.octY);
+    cell.offsets[p] = static_cast<float>(e.offset) / static_cast<float>(format::kPlaneOffsetStepsPerUnit);
+  }
+  planeCells_.push_back(cell);
 }
 
 int HniRayCaster::blockAt(TexelAddress header) const {
@@ -275,7 +291,9 @@ class HniRayCaster::Walk {
       const std::uint8_t* texel =
           tCellExit > t ? blockOf(L.block).cellTexel({L.cell[0], L.cell[1], L.cell[2]}) : nullptr;
       const int g = texel ? texel[3] : format::kCellEmpty;
-      if (g >= format::kCellFirstSolid) {
+      if (g == format::kCellPlane) {
+        if (hitPlaneCell(L, texel, t, tCellExit, top)) return;
+      } else if (g >= format::kCellFirstSolid) {
         if (hitSolid(L, texel, t, tCellExit, top)) return;
       } else if (g == format::kCellRedirection) {
         const Redirect& record = redirectOf(texel);
@@ -336,6 +354,22 @@ class HniRayCaster::Walk {
                                   : tHit == t ? entryNormalWorld(stack_.data(), top, directionF_)
                                               : glm::normalize(L.toWorld * surfaceNormal);
     return add(tHit, normalWorld, {m.r, m.g, m.b}, m.opacity);
+  }
+
+  // A plane cell entered at t: hit where the ray first lies inside its planes' cut, on the face it
+  // entered the cell by or on a plane. Returns true when the ray ends here (opaque).
+  bool hitPlaneCell(const Level& L, const std::uint8_t* texel, float t, float tCellExit, int top) {
+    const PlaneCell& cell =
+        caster_.planeCells_[static_cast<std::size_t>(caster_.planeCellByRecord_.find(readU24(texel))->second)];
+    const auto span = intersectPlaneCut<float>(cell.normals, cell.offsets, cell.combine, toVec(L.o) - toVec(L.tile),
+                                               toVec(L.d), t, tCellExit);
+    if (!span) return false;
+    const Material& m = caster_.materials_[cell.material];
+    const glm::vec3 normalWorld =
+        span->tIn <= 0    ? -directionF_
+        : span->plane < 0 ? entryNormalWorld(stack_.data(), top, directionF_)
+                          : glm::normalize(L.toWorld * cell.normals[static_cast<std::size_t>(span->plane)]);
+    return add(span->tIn, normalWorld, {m.r, m.g, m.b}, m.opacity);
   }
 
   // Level of detail: one pixel spans t * pixelAngle at the ray's distance. With --lod auto the

@@ -19,6 +19,7 @@ const char* pixelKindName(PixelKind kind) {
     case PixelKind::RedirectionRecord: return "redirection records";
     case PixelKind::Material: return "materials";
     case PixelKind::TextureInfo: return "texture infos";
+    case PixelKind::PlaneRecord: return "plane cell records";
   }
   return "?";
 }
@@ -52,9 +53,15 @@ std::vector<PixelKind> pixelKinds(const Image& image) {
     mark(h.data, h.cells.x * h.cells.z, h.cells.y, PixelKind::DataComponent);
     for (int z = 0; z < h.cells.z; ++z)
       for (int y = 0; y < h.cells.y; ++y)
-        for (int x = 0; x < h.cells.x; ++x)
-          if (const CellTexel t = view.cell(h, {x, y, z}); t.g == format::kCellRedirection)
+        for (int x = 0; x < h.cells.x; ++x) {
+          const CellTexel t = view.cell(h, {x, y, z});
+          if (t.g == format::kCellRedirection)
             mark(t.redirection, format::kRedirectionPixels, 1, PixelKind::RedirectionRecord);
+          if (t.g != format::kCellPlane) continue;
+          const int planes = view.planeRecord(t.planeRecord).planeCount();
+          mark(t.planeRecord, format::kPlaneRecordHeadPixels + format::kPixelsPerPlane * planes, 1,
+               PixelKind::PlaneRecord);
+        }
   }
   return kinds;
 }
@@ -77,7 +84,8 @@ HniStats computeStats(const Image& image) {
         for (int x = 0; x < h.cells.x; ++x) {
           const CellTexel t = view.cell(h, {x, y, z});
           ++s.cells;
-          s.solidCells += t.g >= format::kCellFirstSolid;
+          s.solidCells += t.g >= format::kCellFirstSolid && t.g <= format::kCellLastSolid;
+          s.planeCells += t.g == format::kCellPlane;
           s.redirectionCells += t.g == format::kCellRedirection;
         }
   }

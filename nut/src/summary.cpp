@@ -46,6 +46,28 @@ const std::array<std::array<double, kSides>, kSolidCount>& coverageTable() {
   return table;
 }
 
+// The same for a plane cell spanning [lo, hi] of its block: parallel rays through the cell.
+double planeCellCoverage(const PlaneCut& cut, const glm::dvec3& lo, const glm::dvec3& hi, int side) {
+  constexpr int kSamples = 24;
+  const int axis = side / 2;
+  const int u = (axis + 1) % 3, v = (axis + 2) % 3;
+  const std::array<glm::dvec3, 2> normals{cut.planes[0].normal, cut.planes[1].normal};
+  const std::array<double, 2> offsets{cut.planes[0].offsetM, cut.planes[1].offsetM};
+  glm::dvec3 dir(0.0);
+  dir[axis] = side % 2 == 0 ? -1.0 : 1.0;
+  int covered = 0;
+  for (int i = 0; i < kSamples; ++i) {
+    for (int j = 0; j < kSamples; ++j) {
+      glm::dvec3 origin(0.0);
+      origin[u] = lo[u] + (i + 0.5) / kSamples * (hi[u] - lo[u]);
+      origin[v] = lo[v] + (j + 0.5) / kSamples * (hi[v] - lo[v]);
+      origin[axis] = side % 2 == 0 ? hi[axis] : lo[axis];
+      if (intersectPlaneCut<double>(normals, offsets, cut.combine, origin, dir, 0.0, hi[axis] - lo[axis])) ++covered;
+    }
+  }
+  return static_cast<double>(covered) / (kSamples * kSamples);
+}
+
 // The side of a redirected block that faces the same way as `side` of the parent cell.
 int targetSide(const Rotation& rotation, int side) {
   glm::dvec3 normal(0.0);
@@ -87,6 +109,12 @@ VisualSummary summarize(const Hierarchy& h, const Block& block,
             const Material& m = h.materials[cell.material];
             colour = glm::dvec3(m.r, m.g, m.b);
             opacity = coverage[cell.solid.index][static_cast<std::size_t>(side)] * m.opacity / 255.0;
+          } else if (cell.kind == CellKind::Plane) {
+            const Material& m = h.materials[cell.material];
+            colour = glm::dvec3(m.r, m.g, m.b);
+            glm::dvec3 lo, hi;
+            for (int a = 0; a < 3; ++a) lo[a] = block.boundsM[a][c[a]], hi[a] = block.boundsM[a][c[a] + 1];
+            opacity = planeCellCoverage(block.cuts[cell.cut], lo, hi, side) * m.opacity / 255.0;
           } else if (cell.kind == CellKind::Redirection) {
             const Redirection& r = block.redirections[cell.redirection];
             const Rgba8 s = done[r.target][static_cast<std::size_t>(targetSide(r.rotation, side))];

@@ -37,10 +37,10 @@ class Validator {
     const std::uint8_t* magic = image_.at(0, 0);
     if (magic[0] != format::kMagic[0] || magic[1] != format::kMagic[1] || magic[2] != format::kMagic[2])
       return Error{"pixel (0,0) file record: wrong magic (not an HNI)"};
-    if (magic[3] != format::kVersion && magic[3] != format::kVersionLod)
+    if (magic[3] < format::kVersion || magic[3] > format::kVersionPlanes)
       return Error{"pixel (0,0) file record: unsupported version " + std::to_string(magic[3]) +
-                   " (this build reads versions " + std::to_string(format::kVersion) + " and " +
-                   std::to_string(format::kVersionLod) + ")"};
+                   " (this build reads versions " + std::to_string(format::kVersion) + " to " +
+                   std::to_string(format::kVersionPlanes) + ")"};
     file_ = view_.fileRecord();
     edges_.resize(static_cast<std::size_t>(file_.blockCount));
     if (Status s = checkFileRecord(); !s) return s;
@@ -215,8 +215,10 @@ class Validator {
       if (p[0] | p[1] | p[2]) return Error{where() + ": empty cell with non-zero data"};
       return Ok{};
     }
+    if (g == format::kCellPlane && file_.version >= format::kVersionPlanes) return checkPlaneCell(p, where);
     if (g > format::kCellLastSolid)
-      return Error{where() + ": cell descriptor g = " + std::to_string(g) + " is out of range"};
+      return Error{where() + ": cell descriptor g = " + std::to_string(g) + " is out of range" +
+                   (g == format::kCellPlane ? " (plane cells need version 3)" : "")};
     if (g >= format::kCellFirstSolid) {
       const int material = p[0] | p[1] << 8;
       if (material >= file_.materialCount)
@@ -248,6 +250,35 @@ class Validator {
                    std::to_string(lod->second) + " of another record to block " + std::to_string(target->second)};
     recordTargets_[{r.u, r.v}] = target->second;
     edges_[static_cast<std::size_t>(b)].insert(target->second);
+    return Ok{};
+  }
+
+  // A plane cell's record (version 3), checked once per address.
+  template <typename Where>
+  Status checkPlaneCell(const std::uint8_t* p, const Where& where) {
+    const TexelAddress r = unpackAddress(readU24(p));
+    if (!planeRecordsChecked_.insert({r.u, r.v}).second) return Ok{};
+    const std::string rw = "plane cell record " + at(r);
+    if (!inside(r, format::kPlaneRecordHeadPixels, 1, false))
+      return Error{where() + ": " + rw + " is outside the image"};
+    const std::uint8_t combine = view_.texel(r)[3];
+    if (combine < static_cast<int>(PlaneCombine::One) || combine > static_cast<int>(PlaneCombine::Either))
+      return Error{rw + ": combination " + std::to_string(combine) + " is not 1, 2 or 3"};
+    const PlaneRecord record = view_.planeRecord(r);
+    if (!inside(r, format::kPlaneRecordHeadPixels + format::kPixelsPerPlane * record.planeCount(), 1, false))
+      return Error{rw + ": " + std::to_string(record.planeCount()) + " planes do not fit in the image"};
+    if (record.material >= file_.materialCount)
+      return Error{rw + ": material " + std::to_string(record.material) + " out of range (" +
+                   std::to_string(file_.materialCount) + " materials)"};
+    if (record.texture > file_.textureCount)
+      return Error{rw + ": texture " + std::to_string(record.texture) + " out of range (" +
+                   std::to_string(file_.textureCount) + " texture infos)"};
+    if (record.reserved != 0) return Error{rw + ": reserved bytes are not zero"};
+    for (int i = 0; i < record.planeCount(); ++i) {
+      const EncodedPlane& e = record.planes[static_cast<std::size_t>(i)];
+      if (e.octX == 0 || e.octY == 0)
+        return Error{rw + " plane " + std::to_string(i) + ": octahedral coordinate 0 (the range starts at 1)"};
+    }
     return Ok{};
   }
 
@@ -283,7 +314,8 @@ class Validator {
   FileRecord file_;
   std::map<std::pair<int, int>, int> headers_;        // header address -> block id
   std::map<std::pair<int, int>, int> recordTargets_;  // record address -> target block
-  std::map<int, std::uint8_t> lodCodeByTarget_;  // target block -> the footprint code its records carry
+  std::map<int, std::uint8_t> lodCodeByTarget_;
+  std::set<std::pair<int, int>> planeRecordsChecked_;  // target block -> the footprint code its records carry
   std::vector<std::set<int>> edges_;
 };
 

@@ -9,6 +9,8 @@
 #include <random>
 #include <set>
 
+#include <glm/geometric.hpp>
+
 
 #include <converter/axis_order.hpp>
 #include <nut/format.hpp>
@@ -21,9 +23,9 @@ namespace {
 
 using testing::contentAt;
 
-// Cells of uneven millimetre widths holding every kind of solid in random orientations, and cells
-// redirecting to block 0 (a small target of solids) turned by random cube rotations, shifted,
-// some tiled.
+// Cells of uneven millimetre widths holding every kind of solid in random orientations, plane cells
+// cut by planes at random angles, and cells redirecting to block 0 (a small target of solids)
+// turned by random cube rotations, shifted, some tiled.
 Block randomGrid(std::uint32_t seed) {
   std::mt19937 rng(seed);
   std::array<std::vector<double>, 3> sizes;
@@ -31,8 +33,20 @@ Block randomGrid(std::uint32_t seed) {
   for (std::size_t a = 0; a < 3; ++a)
     for (int i = 0; i < n[a]; ++i) sizes[a].push_back(0.1 + 0.001 * static_cast<double>(rng() % 2000));
   Block b = Block::fromSizes(sizes);
+  std::normal_distribution<double> normal;
+  for (int k = 0; k < 3; ++k) {
+    const glm::dvec3 through = b.sizeM() * glm::dvec3(0.2 + 0.3 * k, 0.5, 0.7 - 0.2 * k);
+    PlaneCut cut{{}, static_cast<PlaneCombine>(1 + k)};
+    for (CutPlane& plane : cut.planes) {
+      plane.normal = glm::normalize(glm::dvec3(normal(rng), normal(rng), normal(rng)));
+      plane.offsetM = glm::dot(plane.normal, through);
+    }
+    b.cuts.push_back(cut);
+  }
   for (Cell& c : b.cells) {
-    if (rng() % 5 == 0) {
+    if (rng() % 7 == 0) {
+      c = Cell::planeCell(static_cast<std::uint32_t>(rng() % 3), static_cast<std::uint16_t>(rng() % 5));
+    } else if (rng() % 5 == 0) {
       c = Cell::redirect(static_cast<std::uint32_t>(b.redirections.size()));
       const glm::dvec3 offset(0.001 * static_cast<double>(rng() % 200), 0.001 * static_cast<double>(rng() % 200), -0.001 * static_cast<double>(rng() % 200));
       b.redirections.push_back(Redirection{0, offset, Rotation{static_cast<std::uint8_t>(rng() % format::kCubeRotationCount), 0},

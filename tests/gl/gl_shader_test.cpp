@@ -7,13 +7,16 @@
 // the file and line of each message.
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <limits>
 #include <random>
 
 #include <glm/geometric.hpp>
 
+#include <nut/format.hpp>
 #include <nut/hni_view.hpp>
+#include <nut/plane_cells.hpp>
 #include <nut/png_io.hpp>
 #include <nut/solids.hpp>
 #include <viewer/context.hpp>
@@ -191,6 +194,85 @@ void main() {
   EXPECT_LE(hitMismatch, kWidth * kHeight / 2000);
   EXPECT_LE(tOff, hits / 1000);
   EXPECT_LE(normalOff, hits / 1000);
+}
+
+// Plane cells: the shader's octahedral decoding and plane span against nut::decodeNormalFloat and
+// nut::intersectPlaneCut<float> on random codes, offsets and rays (one, both and either by column).
+TEST(ShaderPlaneCells, MatchTheCppFloatDecodingAndSpan) {
+  auto probe = openProbe();
+  ASSERT_TRUE(probe);
+  constexpr int kWidth = 192, kHeight = 96;
+  std::mt19937_64 rng(2026);
+  std::uniform_real_distribution<double> unit(0.0, 1.0), axis(-1.0, 1.0);
+  std::uniform_int_distribution<std::uint32_t> code(1, format::kOctahedralMax);
+  std::vector<float> rayOrigin, rayDirection, codes, offsets;
+  for (int i = 0; i < kWidth * kHeight; ++i) {
+    glm::dvec3 d;
+    do d = {axis(rng), axis(rng), axis(rng)};
+    while (glm::length(d) < 1e-3);
+    d = glm::normalize(d);
+    const float tEnter = static_cast<float>(unit(rng)), tExit = tEnter + static_cast<float>(unit(rng));
+    rayOrigin.insert(rayOrigin.end(), {float(axis(rng)), float(axis(rng)), float(axis(rng)), tEnter});
+    rayDirection.insert(rayDirection.end(), {float(d.x), float(d.y), float(d.z), tExit});
+    // Codes below 2^24 are exact floats; offsets such that the planes pass near the ray's span.
+    codes.insert(codes.end(), {float(code(rng)), float(code(rng)), float(code(rng)), float(code(rng))});
+    offsets.insert(offsets.end(), {float(axis(rng)), float(axis(rng)), 0.0f, 0.0f});
+  }
+  const GlObject origins = probe->floatTexture(kWidth, kHeight, rayOrigin);
+  const GlObject directions = probe->floatTexture(kWidth, kHeight, rayDirection);
+  const GlObject codeTexture = probe->floatTexture(kWidth, kHeight, codes);
+  const GlObject offsetTexture = probe->floatTexture(kWidth, kHeight, offsets);
+  const std::vector<float> out = probe->run({"hni_access.glsl", "solids.glsl"}, R"(
+uniform sampler2D uInput0;
+uniform sampler2D uInput1;
+uniform sampler2D uInput2;
+uniform sampler2D uInput3;
+out vec4 result;
+void main() {
+  ivec2 at = ivec2(gl_FragCoord.xy);
+  vec4 o = texelFetch(uInput0, at, 0), d = texelFetch(uInput1, at, 0);
+  uvec4 e = uvec4(texelFetch(uInput2, at, 0));
+  vec4 offsets = texelFetch(uInput3, at, 0);
+  vec3 n0 = decodeOctahedral(e.x, e.y), n1 = decodeOctahedral(e.z, e.w);
+  vec3 span = intersectPlaneCut(n0, offsets.x, n1, offsets.y, 1 + at.x % 3, o.xyz, d.xyz, o.w, d.w);
+  result = span.x <= span.y ? vec4(span, n0.x + n1.y) : vec4(-1.0);
+}
+)", kWidth, kHeight, {&origins, &directions, &codeTexture, &offsetTexture});
+  ASSERT_EQ(out.size(), rayOrigin.size());
+  long long hits = 0, hitMismatch = 0, tOff = 0, planeOff = 0, normalOff = 0;
+  double worstT = 0;
+  for (int y = 0; y < kHeight; ++y)
+    for (int x = 0; x < kWidth; ++x) {
+      const std::size_t i = 4 * (static_cast<std::size_t>(y) * kWidth + static_cast<std::size_t>(x));
+      const std::array<glm::vec3, 2> normals{
+          decodeNormalFloat(static_cast<std::uint32_t>(codes[i]), static_cast<std::uint32_t>(codes[i + 1])),
+          decodeNormalFloat(static_cast<std::uint32_t>(codes[i + 2]), static_cast<std::uint32_t>(codes[i + 3]))};
+      const auto cpu = intersectPlaneCut<float>(normals, {offsets[i], offsets[i + 1]},
+                                                static_cast<PlaneCombine>(1 + x % 3),
+                                                {rayOrigin[i], rayOrigin[i + 1], rayOrigin[i + 2]},
+                                                {rayDirection[i], rayDirection[i + 1], rayDirection[i + 2]},
+                                                rayOrigin[i + 3], rayDirection[i + 3]);
+      const bool glHit = !(out[i] == -1.0f && out[i + 1] == -1.0f);
+      if (cpu.has_value() != glHit) {
+        ++hitMismatch;
+        continue;
+      }
+      if (!cpu) continue;
+      ++hits;
+      const double tUlps = ulpsApart(cpu->tIn, out[i]);
+      worstT = std::max(worstT, tUlps);
+      tOff += tUlps > 4;
+      planeOff += cpu->plane != static_cast<int>(out[i + 2]);
+      normalOff += std::abs(normals[0].x + normals[1].y - out[i + 3]) > 1e-6f;
+    }
+  std::printf("plane cells: %d rays, %lld hits; hit/miss disagree on %lld; t worst %.1f ulps (%lld beyond 4); plane "
+              "differs on %lld; decoded normals differ on %lld\n",
+              kWidth * kHeight, hits, hitMismatch, worstT, tOff, planeOff, normalOff);
+  EXPECT_GT(hits, kWidth * kHeight / 10);
+  EXPECT_LE(hitMismatch, kWidth * kHeight / 2000);
+  EXPECT_LE(tOff, hits / 1000);
+  EXPECT_LE(planeOff, hits / 1000);
+  EXPECT_EQ(normalOff, 0);
 }
 
 TEST(ShaderLookups, MatchAxisViewOnTheSampleBuilding) {

@@ -43,7 +43,7 @@ Result<std::string> generatedWebModule(const ShaderLibrary& library) {
   namespace f = format;
   const nlohmann::json constants = {
       {"magic", std::string(reinterpret_cast<const char*>(f::kMagic), 3)},
-      {"versions", {f::kVersion, f::kVersionLod}},
+      {"versions", {f::kVersion, f::kVersionLod, f::kVersionPlanes}},
       {"maxImageSize", f::kMaxImageSize},
       {"fileRoot", f::kFileRoot},
       {"headerPixels", f::kHeaderPixels},

@@ -69,7 +69,8 @@ bool parentIndexable(const std::vector<double>& boundsM, const std::vector<int>&
 // If every cell of the range is the same solid (or empty), that cell; else nullopt.
 std::optional<Cell> uniform(const Block& b, const std::array<int, 3>& lo, const std::array<int, 3>& hi) {
   const Cell first = b.cell(lo[0], lo[1], lo[2]);
-  if (first.kind == CellKind::Redirection) return std::nullopt;
+  // A plane cell's planes belong to this block's frame, and a redirection to its records.
+  if (first.kind == CellKind::Redirection || first.kind == CellKind::Plane) return std::nullopt;
   for (int z = lo[2]; z < hi[2]; ++z)
     for (int y = lo[1]; y < hi[1]; ++y)
       for (int x = lo[0]; x < hi[0]; ++x)
@@ -166,7 +167,7 @@ void compactMaterials(Hierarchy& h) {
   std::vector<int> remap(h.materials.size(), -1);
   for (const Block& b : h.blocks)
     for (const Cell& c : b.cells)
-      if (c.kind == CellKind::Solid) remap[c.material] = 0;
+      if (c.hasMaterial()) remap[c.material] = 0;
   std::vector<Material> kept;
   for (std::size_t m = 0; m < remap.size(); ++m)
     if (remap[m] == 0) {
@@ -175,7 +176,7 @@ void compactMaterials(Hierarchy& h) {
     }
   for (Block& b : h.blocks)
     for (Cell& c : b.cells)
-      if (c.kind == CellKind::Solid) c.material = static_cast<std::uint16_t>(remap[c.material]);
+      if (c.hasMaterial()) c.material = static_cast<std::uint16_t>(remap[c.material]);
   h.materials = std::move(kept);
 }
 

@@ -8,7 +8,9 @@
 #include <tuple>
 #include <utility>
 
+#include <glm/geometric.hpp>
 #include <glm/mat3x3.hpp>
+#include <glm/matrix.hpp>
 
 #include <nut/format.hpp>
 #include <nut/units.hpp>
@@ -50,6 +52,16 @@ TurnedBlock turnBlock(const Block& b, int cube) {
       for (auto it = bounds.rbegin(); it != bounds.rend(); ++it) turned.push_back(snapToUnits(bounds.back() - *it));
       out.offsetM[from[static_cast<std::size_t>(i)]] = bounds.back();
     }
+  }
+  // Plane cuts live in the block's frame: n . p_old <= d with p_old = M p_new + offset is
+  // (M^T n) . p_new <= d - n . offset.
+  const glm::dmat3 forward(m);
+  for (PlaneCut cut : b.cuts) {
+    for (CutPlane& plane : cut.planes) {
+      plane.offsetM -= glm::dot(plane.normal, out.offsetM);
+      plane.normal = glm::transpose(forward) * plane.normal;
+    }
+    out.block.cuts.push_back(cut);
   }
   // A cell's unit cube turns with the block about its centre, so its solid turns by M^-1.
   const int inverse = inverseRotation(m);

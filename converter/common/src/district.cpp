@@ -88,7 +88,7 @@ class BlockMerger {
     Block b = h.blocks[id];
     for (Redirection& r : b.redirections) r.target = add(h, r.target);
     for (Cell& c : b.cells) {
-      if (c.kind != CellKind::Solid) continue;
+      if (!c.hasMaterial()) continue;
       c.material = materials_[c.material];
       if (c.texture != 0) c.texture = textures_[c.texture - 1u];
     }

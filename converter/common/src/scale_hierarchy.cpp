@@ -8,6 +8,8 @@
 #include <string>
 #include <utility>
 
+#include <glm/geometric.hpp>
+
 namespace nut::converter {
 
 namespace {
@@ -25,6 +27,13 @@ class Stretcher {
     Block b = source_.blocks[id];
     for (std::size_t a = 0; a < 3; ++a)
       for (double& bound : b.boundsM[a]) bound *= f[a];
+    // A plane n . p <= d through the stretch p' = F p is (F^-1 n) . p' <= d, normalised.
+    for (PlaneCut& cut : b.cuts)
+      for (CutPlane& plane : cut.planes) {
+        const glm::dvec3 n = plane.normal / glm::dvec3(f[0], f[1], f[2]);
+        const double length = glm::length(n);
+        plane = {n / length, plane.offsetM / length};
+      }
     for (Redirection& r : b.redirections) {
       if (r.rotation.yaw != 0 && std::abs(f[0] - f[2]) > 1e-12 * std::max(f[0], f[2]))
         return Error{"block " + std::to_string(id) +

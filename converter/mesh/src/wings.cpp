@@ -158,7 +158,7 @@ glm::dvec3 joinAtCut(Hierarchy& main, const glm::dvec3& mainOriginM, const Hiera
   for (std::size_t m = 0; m < wing.materials.size(); ++m) material[m] = main.addMaterial(wing.materials[m]);
   for (Block b : wing.blocks) {
     for (Cell& c : b.cells)
-      if (c.kind == CellKind::Solid) c.material = material[c.material];
+      if (c.hasMaterial()) c.material = material[c.material];
     for (Redirection& r : b.redirections) r.target += first;
     main.addBlock(std::move(b));
   }

@@ -1,4 +1,4 @@
-// nut/format.hpp — the HNI (Hierarchical NUT Image) format constants, versions 1 and 2.
+// nut/format.hpp — the HNI (Hierarchical NUT Image) format constants, versions 1 to 3.
 //
 // The full byte-level specification is docs/FORMAT.md; this header is its single source in code
 // (the GLSL constants are generated from it). In short: an HNI is an RGBA8 image. The upper-left
@@ -15,6 +15,7 @@
 //   data component nx*nz x ny   one pixel per cell: (material lo, material hi, texture, g)
 //   material       2 px         (r, g, b, opacity), (reflectance, 0, 0, 0)
 //   texture info   3 px         offset To (3 x s24 mm), texture id (u16)
+//   plane cell     4 or 7 px    material, texture, combination; per plane: normal (2 x u24), offset
 //
 // Lengths are integers of millimetres: unsigned 24-bit for sizes and boundary positions (up to
 // 16777.215 m), signed 24-bit for offsets. Multi-byte fields are little-endian across R, G, B.
@@ -29,6 +30,8 @@ inline constexpr std::uint8_t kMagic[3] = {'N', 'U', 'T'};
 // record carries a level-of-detail footprint. A reader reads both.
 inline constexpr std::uint8_t kVersion = 1;
 inline constexpr std::uint8_t kVersionLod = 2;
+// Version 3: some cell is a plane cell (g = kCellPlane); it holds version 2's records as well.
+inline constexpr std::uint8_t kVersionPlanes = 3;
 
 // Image limits. The width search of compile stops at kMaxSearchWidth unless one item is wider;
 // no HNI may exceed kMaxImageSize in either dimension (it must fit a viewer atlas page).
@@ -82,6 +85,19 @@ inline constexpr std::uint8_t kCellRedirection = 1;
 inline constexpr std::uint8_t kCellFirstSolid = 2;
 inline constexpr int kSolidCount = 69;
 inline constexpr std::uint8_t kCellLastSolid = kCellFirstSolid + kSolidCount - 1;  // 70
+// Version 3: a plane cell; R, G, B of the data pixel are the 12-bit address of its record.
+inline constexpr std::uint8_t kCellPlane = kCellLastSolid + 1;  // 71
+
+// Plane cell record: one pixel (material u16, texture, combination byte), then three pixels per
+// plane: the normal's octahedral coordinates e_x, e_y (u24 each) and the offset (s32, in
+// 1/kPlaneOffsetStepsPerUnit mm). An octahedral coordinate u in 1..kOctahedralMax stands for
+// (u - kOctahedralCentre) / kOctahedralSteps, so 0 and +-1 are exact.
+inline constexpr int kPlaneRecordHeadPixels = 1;
+inline constexpr int kPixelsPerPlane = 3;
+inline constexpr std::uint32_t kOctahedralCentre = 1u << 23;
+inline constexpr std::uint32_t kOctahedralSteps = (1u << 23) - 1;
+inline constexpr std::uint32_t kOctahedralMax = (1u << 24) - 1;
+inline constexpr int kPlaneOffsetStepsPerUnit = 64;
 
 // Redirection record: A of pixel 0 holds the tiling flags, A of pixel 1 the cube rotation, A of
 // pixel 2 (version 2) the target's level-of-detail footprint code c: 0 = none, else the summary may

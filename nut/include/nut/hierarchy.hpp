@@ -23,6 +23,7 @@
 #include <glm/vec3.hpp>
 
 #include <nut/error.hpp>
+#include <nut/plane_cells.hpp>
 #include <nut/solids.hpp>
 
 namespace nut {
@@ -74,23 +75,30 @@ struct Redirection {
   friend bool operator==(const Redirection&, const Redirection&) = default;
 };
 
-enum class CellKind : std::uint8_t { Empty, Redirection, Solid };
+// Plane: the cell's box cut by the planes of one of its block's PlaneCuts (plane_cells.hpp).
+enum class CellKind : std::uint8_t { Empty, Redirection, Solid, Plane };
 
 struct Cell {
   CellKind kind = CellKind::Empty;
   Solid solid;                        // when kind == Solid
-  std::uint16_t material = 0;         // index into Hierarchy::materials (solids)
+  std::uint16_t material = 0;         // index into Hierarchy::materials (solids and plane cells)
   std::uint8_t texture = 0;           // 0 = none, n = Hierarchy::textures[n - 1]
   std::uint32_t redirection = 0;      // index into Block::redirections (redirection cells)
+  std::uint32_t cut = 0;              // index into Block::cuts (plane cells)
 
   static Cell empty() { return {}; }
   static Cell solidCell(Solid s, std::uint16_t material, std::uint8_t texture = 0) {
-    return {CellKind::Solid, s, material, texture, 0};
+    return {CellKind::Solid, s, material, texture, 0, 0};
   }
   static Cell box(std::uint16_t material) { return solidCell(Solid{0}, material); }
   static Cell redirect(std::uint32_t redirectionIndex) {
-    return {CellKind::Redirection, Solid{}, 0, 0, redirectionIndex};
+    return {CellKind::Redirection, Solid{}, 0, 0, redirectionIndex, 0};
   }
+  static Cell planeCell(std::uint32_t cutIndex, std::uint16_t material, std::uint8_t texture = 0) {
+    return {CellKind::Plane, Solid{}, material, texture, 0, cutIndex};
+  }
+  // Whether material and texture mean something: solids and plane cells.
+  bool hasMaterial() const { return kind == CellKind::Solid || kind == CellKind::Plane; }
   friend bool operator==(const Cell&, const Cell&) = default;
 };
 
@@ -103,6 +111,7 @@ struct Block {
   std::array<std::vector<double>, 3> boundsM;
   std::vector<Cell> cells;                 // x fastest, then y, then z
   std::vector<Redirection> redirections;   // referenced by redirection cells
+  std::vector<PlaneCut> cuts;              // referenced by plane cells, in this block's frame
   // Producers may supply the summary (e.g. from a grammar's own subtree); otherwise compile
   // computes it from the content. decode() fills it from the image.
   std::optional<VisualSummary> summary;

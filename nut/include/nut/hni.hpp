@@ -39,7 +39,8 @@ Result<Hierarchy> decode(const Image& image);
 struct HniStats {
   int blocks = 0;
   long long cells = 0;           // cells of all blocks
-  long long solidCells = 0;
+  long long solidCells = 0;       // the 69 solids
+  long long planeCells = 0;       // version 3
   long long redirectionCells = 0;
   int redirections = 0;          // distinct redirection records
   int materials = 0;
@@ -67,8 +68,9 @@ enum class PixelKind : std::uint8_t {
   RedirectionRecord,
   Material,
   TextureInfo,
+  PlaneRecord,
 };
-inline constexpr int kPixelKindCount = 10;
+inline constexpr int kPixelKindCount = 11;
 // "data component", "exact row", ...
 const char* pixelKindName(PixelKind kind);
 // Row-major, width * height entries; the basis of the waste figure and of `nut info --bytes`.

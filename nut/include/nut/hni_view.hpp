@@ -57,10 +57,21 @@ struct RedirectionRecord {
 
 // A data pixel: the cell descriptor g and what it points to.
 struct CellTexel {
-  std::uint8_t g = 0;                  // 0 empty, 1 redirection, 2 + solid index
+  std::uint8_t g = 0;                  // 0 empty, 1 redirection, 2 + solid index, 71 plane cell
   std::uint16_t material = 0;          // solids
   std::uint8_t texture = 0;            // solids: 0 none, n = texture info n - 1
   TexelAddress redirection;            // redirection cells
+  TexelAddress planeRecord;            // plane cells (version 3)
+};
+
+// A plane cell record (version 3).
+struct PlaneRecord {
+  std::uint16_t material = 0;
+  std::uint8_t texture = 0;
+  std::uint8_t combine = 0;            // PlaneCombine: 1 one plane, 2 both, 3 either
+  std::array<EncodedPlane, 2> planes{};  // planes[1] only when combine is 2 or 3
+  std::uint8_t reserved = 0;           // OR of the reserved bytes (A of each plane's first two pixels)
+  int planeCount() const { return combine == 1 ? 1 : 2; }
 };
 
 inline std::uint32_t readU24(const std::uint8_t* p) {
@@ -160,11 +171,33 @@ class HniView {
     t.g = p[3];
     if (t.g == format::kCellRedirection) {
       t.redirection = {p[0], p[1]};
+    } else if (t.g == format::kCellPlane) {
+      t.planeRecord = unpackAddress(readU24(p));
     } else if (t.g >= format::kCellFirstSolid) {
       t.material = static_cast<std::uint16_t>(p[0] | p[1] << 8);
       t.texture = p[2];
     }
     return t;
+  }
+
+  // The record's planes are read only as far as its combination byte says (validate() checks the
+  // byte and that the record fits the image first).
+  PlaneRecord planeRecord(TexelAddress at) const {
+    PlaneRecord r;
+    const std::uint8_t* head = texel(at);
+    r.material = static_cast<std::uint16_t>(head[0] | head[1] << 8);
+    r.texture = head[2];
+    r.combine = head[3];
+    for (int i = 0; i < r.planeCount(); ++i) {
+      const int first = format::kPlaneRecordHeadPixels + format::kPixelsPerPlane * i;
+      const std::uint8_t* x = texel(at, first);
+      const std::uint8_t* y = texel(at, first + 1);
+      const std::uint8_t* o = texel(at, first + 2);
+      const std::uint32_t offset = readU24(o) | static_cast<std::uint32_t>(o[3]) << 24;
+      r.planes[static_cast<std::size_t>(i)] = {readU24(x), readU24(y), static_cast<std::int32_t>(offset)};
+      r.reserved |= static_cast<std::uint8_t>(x[3] | y[3]);
+    }
+    return r;
   }
 
   RedirectionRecord redirection(TexelAddress at) const {

@@ -1,9 +1,10 @@
 // nut/mesh_export.hpp — NUT -> triangle mesh: the solid the ray caster sees, as triangles.
 //
 // exportMesh walks the whole DAG from the root and emits, in world coordinates, the boundary of
-// every solid cell: planar faces exactly, quadric surfaces (quarter cylinders, sphere octants and
-// their inverses) tessellated with every vertex on the surface and a chord error within the
-// tolerance. Redirections follow the model's semantics (hierarchy.hpp, docs/FORMAT.md
+// every solid cell and plane cell: planar faces exactly (a plane cell is its box clipped by its
+// planes, a valley three convex pieces whose shared caps are dropped), quadric surfaces (quarter
+// cylinders, sphere octants and their inverses) tessellated with every vertex on the surface and
+// a chord error within the tolerance. Redirections follow the model's semantics (hierarchy.hpp, docs/FORMAT.md
 // "Redirection record"): the target is placed at the offset, rotated, repeated along its wrapped
 // axes and clipped by the redirecting cell and every ancestor cell; where a solid is cut, the cut
 // is closed by a cap face on the clipping cell's boundary, because the ray caster sees solid
@@ -22,7 +23,7 @@
 // by any ancestor cell) and both materials are opaque. Full-face solids: the box on all six faces;
 // wedges and quarter cylinders on the two faces at their right-angle edge; inverse quarter
 // cylinders on the two faces opposite it; inverse pyramids and inverse octants on the three faces
-// opposite their corner; pyramids and octants on none. Faces between cells of different blocks
+// opposite their corner; pyramids, octants and plane cells on none. Faces between cells of different blocks
 // (a sub-block next to its parent's cells), between different redirections' instances, at cut
 // cells, and next to translucent cells are kept.
 #pragma once

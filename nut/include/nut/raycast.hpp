@@ -3,9 +3,9 @@
 // It reads the image through HniView with the lookups the GLSL shader makes: NUT traversal (the
 // boundary a step reaches is the one the shader reads through the j numbers, taken from a table
 // read once per block), redirection landing (record, ray transform, lower header, landing cell by
-// random access), a fixed-size stack to return to parents, wrapping, the 69
-// solids, translucent cells that tint and continue, level of detail from visual summaries, and an
-// iteration cap. It computes in float, as the shader does; the exact path (exact_path.hpp) is the
+// random access), a fixed-size stack to return to parents, wrapping, the 69 solids, plane cells
+// (version 3), translucent cells that tint and continue, level of detail from visual summaries,
+// and an iteration cap. It computes in float, as the shader does; the exact path (exact_path.hpp) is the
 // double-precision ground truth it is tested against. docs/RENDERING.md defines the output.
 #pragma once
 
@@ -13,6 +13,7 @@
 #include <cstdint>
 #include <functional>
 #include <optional>
+#include <unordered_map>
 #include <vector>
 
 #include <glm/mat3x3.hpp>
@@ -102,10 +103,19 @@ class HniRayCaster {
     float lodFootprint = 0;  // units; 0 = none
   };
 
+  // A plane cell record decoded once, in float and units like the traversal.
+  struct PlaneCell {
+    std::array<glm::vec3, 2> normals;  // unit, in the block's frame
+    std::array<float, 2> offsets;      // units
+    PlaneCombine combine;
+    std::uint16_t material;
+  };
+
   // One ray's traversal (raycast.cpp), with the lookup's boundaries.
   template <Lookup mode>
   class Walk;
   int blockAt(TexelAddress header) const;
+  void addPlaneCell(std::uint32_t packedRecord);
 
   const Image& image_;
   HniView view_;
@@ -116,6 +126,8 @@ class HniRayCaster {
   std::vector<int> blockByHeader_;  // 256 * v + u -> index into blocks_, or -1
   std::vector<Redirect> redirects_;
   std::vector<int> redirectByRecord_;  // 256 * v + u -> index into redirects_, or -1
+  std::vector<PlaneCell> planeCells_;
+  std::unordered_map<std::uint32_t, int> planeCellByRecord_;  // packed record address -> planeCells_
   std::vector<Material> materials_;    // the material table, decoded once like the headers
   int root_ = 0;
   FileRecord file_;
