@@ -10,9 +10,12 @@
 #include <random>
 #include <set>
 
+#include <glm/geometric.hpp>
+
 #include <converter/assemble.hpp>
 #include <converter/blocks.hpp>
 #include <converter/share_axes.hpp>
+#include <nut/format.hpp>
 #include <nut/hni.hpp>
 #include <nut/solids.hpp>
 
@@ -42,6 +45,16 @@ Sample lookup(const Hierarchy& h, BlockId id, glm::dvec3 p, int depth = 0) {
   const Cell& cell = b.cell(c[0], c[1], c[2]);
   if (cell.kind == CellKind::Empty) return {};
   if (cell.kind == CellKind::Solid) return {true, cell.material, cell.solid.index};
+  if (cell.kind == CellKind::Plane) {
+    // Inside the cut of the block's own planes at p (a point of the block's frame).
+    const PlaneCut& cut = b.cuts[cell.cut];
+    const bool first = glm::dot(cut.planes[0].normal, p) <= cut.planes[0].offsetM;
+    const bool second = glm::dot(cut.planes[1].normal, p) <= cut.planes[1].offsetM;
+    const bool inside = cut.combine == PlaneCombine::One    ? first
+                        : cut.combine == PlaneCombine::Both ? first && second
+                                                            : first || second;
+    return inside ? Sample{true, cell.material, format::kCellPlane} : Sample{};
+  }
   if (depth > 32) return {};
   const Redirection& r = b.redirections[cell.redirection];
   return lookup(h, r.target, testing::redirectedPoint(h, b, c, r, p), depth + 1);
@@ -111,6 +124,24 @@ int expectSplitToFit(const Block& g0, std::uint32_t seed) {
   expectSameContent(g0, h, 2000, seed);
   EXPECT_TRUE(compile(h).ok());
   return *added;
+}
+
+// randomBlock with a share of its cells made plane cells of three cuts at odd angles through it.
+Block withPlaneCells(Block b, std::uint32_t seed, double share) {
+  std::mt19937 rng(seed);
+  std::normal_distribution<double> normal;
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  for (int k = 0; k < 3; ++k) {
+    PlaneCut cut{{}, static_cast<PlaneCombine>(1 + k)};
+    for (CutPlane& plane : cut.planes) {
+      plane.normal = glm::normalize(glm::dvec3(normal(rng), normal(rng), normal(rng)));
+      plane.offsetM = glm::dot(plane.normal, b.sizeM() * glm::dvec3(unit(rng), unit(rng), unit(rng)));
+    }
+    b.cuts.push_back(cut);
+  }
+  for (Cell& c : b.cells)
+    if (unit(rng) < share) c = Cell::planeCell(static_cast<std::uint32_t>(rng() % 3), static_cast<std::uint16_t>(rng() % 3));
+  return b;
 }
 
 TEST(SplitBlocks, AxisWithMoreThan256CellsIsSplitAndKeepsItsContent) {
@@ -553,6 +584,44 @@ TEST(ShareAxes, ACellThatLooksDifferentCutIsNotCut) {
   }));
   h.addBlock(blockFromBounds(std::array<std::vector<double>, 3>{upper, {0.0, 3.0}, {0.0, 0.3}}, [](const glm::dvec3&) { return Cell::box(1); }));
   EXPECT_EQ(shareAxes(h, 0.002), 0);
+}
+
+TEST(SplitBlocks, PlaneCellsKeepTheirPlanesInEveryPiece) {
+  expectSplitToFit(withPlaneCells(randomBlock({600, 3, 2}, {0.25, 0.5, 0.1}, 7, 0.4), 8, 0.3), 9);
+}
+
+// Plane cells in grids whose layers repeat: the search must not tile a period holding plane cells
+// (their planes cut each place differently) and must move the planes with every sub-block it cuts.
+TEST(Blocks, PlaneCellsShowTheSameThroughTheSearch) {
+  for (std::uint32_t seed = 1; seed <= 6; ++seed) {
+    const Block g0 = withPlaneCells(randomBlock({16, 6, 12}, {0.3, 0.05, 1.2}, seed, 0.5), 100 + seed, 0.05);
+    for (const bool priced : {false, true}) {
+      BlockOptions options;
+      options.priced = priced;
+      BlockStats stats;
+      auto h = buildHierarchy(g0, {Material{}, Material{200, 200, 200}, Material{40, 60, 90}}, glm::dvec3(0.0),
+                              options, stats);
+      ASSERT_TRUE(h.ok()) << h.error().message;
+      expectSameContent(g0, *h, 5000, 60 + seed);
+      EXPECT_TRUE(compile(*h).ok());
+    }
+  }
+}
+
+// Layers repeating with period 3 along x (widths and content), a fifth of the cells plane cells
+// of the same cut in every period: equal cells, different surfaces. Tiling a period would show
+// the first period's planes in the others.
+TEST(Blocks, PlaneCellsInRepeatedLayersAreNotTiled) {
+  Block period = withPlaneCells(randomBlock({3, 4, 5}, {0.5, 0.3, 0.8}, 18, 0.6), 19, 0.2);
+  Block g0 = randomBlock({18, 4, 5}, {0.5, 0.3, 0.8}, 20, 0.0);
+  g0.cuts = period.cuts;
+  for (int z = 0; z < 5; ++z)
+    for (int y = 0; y < 4; ++y)
+      for (int x = 0; x < 18; ++x) g0.cell(x, y, z) = period.cell(x % 3, y, z);
+  BlockStats stats;
+  auto h = buildHierarchy(g0, {Material{}, Material{200, 200, 200}, Material{40, 60, 90}}, glm::dvec3(0.0), {}, stats);
+  ASSERT_TRUE(h.ok()) << h.error().message;
+  expectSameContent(g0, *h, 20000, 21);
 }
 
 TEST(PricedBlocks, RandomGridsShowTheSame) {

@@ -29,6 +29,7 @@
 #include <vector>
 
 #include <glm/common.hpp>
+#include <glm/geometric.hpp>
 #include <glm/mat3x3.hpp>
 #include <glm/matrix.hpp>
 
@@ -66,7 +67,14 @@ Block subBlock(const Block& b, const std::array<int, 3>& lo, const std::array<in
   for (int z = lo[2]; z < hi[2]; ++z)
     for (int y = lo[1]; y < hi[1]; ++y)
       for (int x = lo[0]; x < hi[0]; ++x) out.cells.push_back(b.cell(x, y, z));
-  out.redirections = b.redirections;  // cells keep their record indices
+  out.redirections = b.redirections;  // cells keep their record and cut indices
+  // The planes move into the sub-block's frame: n . (p + base) <= d is n . p <= d - n . base.
+  glm::dvec3 base;
+  for (int a = 0; a < 3; ++a)
+    base[a] = b.boundsM[static_cast<std::size_t>(a)][static_cast<std::size_t>(lo[static_cast<std::size_t>(a)])];
+  out.cuts = b.cuts;
+  for (PlaneCut& cut : out.cuts)
+    for (CutPlane& plane : cut.planes) plane.offsetM -= glm::dot(plane.normal, base);
   return out;
 }
 
@@ -154,7 +162,7 @@ bool sameLayers(const Block& b, const Strides& st, int i, int j) {
   for (int k = 0; k < st.nc; ++k)
     for (int l = 0; l < st.nb; ++l) {
       const std::size_t o = static_cast<std::size_t>(k) * st.c + static_cast<std::size_t>(l) * st.b;
-      if (!(x[o] == y[o])) return false;
+      if (!sameAtAnotherPlace(x[o], y[o])) return false;
     }
   return true;
 }
@@ -197,7 +205,8 @@ EqualLayers equalLayers(const Block& b) {
     for (std::size_t a = 0; a < 3; ++a) {
       const auto i = static_cast<std::size_t>(at[a]);
       const auto candidate = static_cast<std::size_t>(layers[a][i]);
-      if (candidate != i && verified[a][i] && !(b.cells[index] == b.cells[index - (i - candidate) * stride[a]])) verified[a][i] = false;
+      if (candidate != i && verified[a][i] && !sameAtAnotherPlace(b.cells[index], b.cells[index - (i - candidate) * stride[a]]))
+        verified[a][i] = false;
     }
   });
   for (int a = 0; a < 3; ++a) {
@@ -264,6 +273,7 @@ void simplify(Block& b) {
       out.boundsM = b.boundsM;
       out.boundsM[static_cast<std::size_t>(a)] = bounds;
       out.redirections = b.redirections;
+      out.cuts = b.cuts;
       out.cells.resize(static_cast<std::size_t>(out.cellCount(0)) * static_cast<std::size_t>(out.cellCount(1)) * static_cast<std::size_t>(out.cellCount(2)));
       for (int z = 0; z < out.cellCount(2); ++z)
         for (int y = 0; y < out.cellCount(1); ++y)
@@ -462,7 +472,7 @@ std::optional<Cell> plainView(const Hierarchy& h, const Block& b, const std::arr
     for (int y = first[1]; y <= last[1]; ++y)
       for (int x = first[0]; x <= last[0]; ++x) {
         Cell c = target.cell(x, y, z);
-        if (c.kind == CellKind::Redirection) return std::nullopt;
+        if (c.kind == CellKind::Redirection || c.kind == CellKind::Plane) return std::nullopt;
         if (c.kind == CellKind::Solid && c.solid.index != 0) {
           // The part of the cell's unit cube that `at` shows.
           const std::array<int, 3> t{x, y, z};

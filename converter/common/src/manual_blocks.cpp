@@ -137,7 +137,7 @@ std::vector<Place> findPlaces(const Block& g0, const Block& pattern,
           const auto sx = static_cast<std::size_t>(x), sy = static_cast<std::size_t>(y),
                      sz = static_cast<std::size_t>(z);
           const Cell& s = pattern.cell(m[0]->sCell[sx], m[1]->sCell[sy], m[2]->sCell[sz]);
-          if (!(g0.cells[index] == s)) return false;
+          if (!sameAtAnotherPlace(g0.cells[index], s)) return false;
           if (!stretchable(s) && !(m[0]->whole[sx] && m[1]->whole[sy] && m[2]->whole[sz])) return false;
         }
     return true;

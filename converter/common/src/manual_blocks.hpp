@@ -15,6 +15,11 @@ inline bool stretchable(const Cell& c) {
   return c.kind == CellKind::Empty || (c.kind == CellKind::Solid && c.solid.index == 0);
 }
 
+// Whether a cell at one place of a block shows what an equal cell shows at another: not for plane
+// cells, whose planes are the block's and so cut each place differently. Blocks are not repeated
+// across plane cells.
+inline bool sameAtAnotherPlace(const Cell& x, const Cell& y) { return x == y && x.kind != CellKind::Plane; }
+
 // The paper's user-selected block: the cells the box covers, simplified, become block S (added to
 // h), and every place of g0 that matches S (one-to-many width matching within the tolerance)
 // redirects to it. Nothing happens when the box misses g0.

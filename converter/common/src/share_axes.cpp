@@ -68,6 +68,7 @@ Block refined(const Block& b, int a, const Units& to) {
   out.boundsM[static_cast<std::size_t>(a)].clear();
   for (std::int64_t t : to) out.boundsM[static_cast<std::size_t>(a)].push_back(toMetres(t));
   out.redirections = b.redirections;
+  out.cuts = b.cuts;  // plane cells keep their planes, which are the block's
   out.cells.resize(static_cast<std::size_t>(out.cellCount(0)) * static_cast<std::size_t>(out.cellCount(1)) * static_cast<std::size_t>(out.cellCount(2)));
   std::map<std::pair<std::uint32_t, std::int64_t>, std::uint32_t> shifted;  // (record, shift) -> record
   std::array<int, 3> at{};
