@@ -34,7 +34,7 @@ struct ConvertCliOptions {
   double toleranceM = 0.01;
   double angleDeg = 1.0;
   bool zUp = false, quiet = false, noAutoBlocks = false, noWedges = false, noAlign = false, noAxisOrder = false,
-       noWings = false;
+       noWings = false, planeCells = false;
   std::vector<std::string> blocks;
   int threads = 0;
   std::string pngEffort = "smallest";
@@ -78,10 +78,10 @@ void printSummary(const converter::ConvertReport& r, const std::string& output) 
   std::fprintf(stderr, "convert: %s: %s\n", r.name.c_str(), r.check.summary().c_str());
   std::fprintf(
       stderr,
-      "convert: %s: yaw %.2f deg (%s); grid %dx%dx%d, %lld solid cells (%lld wedges), %d blocks; surface %.1f %% "
-      "NUT, %.1f %% complementary mesh (%zu triangles)\n",
+      "convert: %s: yaw %.2f deg (%s); grid %dx%dx%d, %lld solid cells (%lld wedges, %lld plane cells), %d blocks; "
+      "surface %.1f %% NUT, %.1f %% complementary mesh (%zu triangles)\n",
       r.name.c_str(), r.yawDeg, r.yawApplied ? "converted in that frame" : "not aligned", s.cells[0], s.cells[1],
-      s.cells[2], s.solidCells, s.wedgeCells, r.hni.blocks, s.areaM2 > 0 ? 100 * s.nutAreaM2 / s.areaM2 : 0.0,
+      s.cells[2], s.solidCells, s.wedgeCells, s.planeCells, r.hni.blocks, s.areaM2 > 0 ? 100 * s.nutAreaM2 / s.areaM2 : 0.0,
       s.areaM2 > 0 ? 100 * s.complementAreaM2 / s.areaM2 : 0.0, r.complementTriangles);
   std::fprintf(stderr, "convert: wrote %s (%dx%d, %lld bytes raw, %ju bytes PNG) in %.2f s\n", output.c_str(),
                r.hni.width, r.hni.height, r.hni.bytesRaw, r.pngBytes, r.seconds());
@@ -93,6 +93,7 @@ Result<converter::ConvertOptions> convertOptionsOf(const ConvertCliOptions& o) {
   options.solid.angleToleranceDeg = o.angleDeg;
   options.solid.wedges = !o.noWedges;
   options.solid.pyramids = !o.noWedges;
+  options.solid.planeCells = o.planeCells;
   options.solid.threads = o.threads;
   options.alignYaw = !o.noAlign;
   options.turnedWings = !o.noWings;
@@ -292,6 +293,9 @@ void addConvertCommand(CLI::App& app, int& exitCode) {
                 "Keep the grid's axes as they are instead of trying the order whose cells compress best");
   cmd->add_flag("--no-wedges", o->noWedges,
                 "Leave sloped faces to the complementary mesh instead of fitting wedge and pyramid cells");
+  cmd->add_flag("--plane-cells", o->planeCells,
+                "Make plane cells (HNI version 3) where the complementary mesh crosses a cell on one or two planes, "
+                "and take those faces out of it");
   cmd->add_flag("--no-align", o->noAlign,
                 "Convert a building turned about the vertical in the world frame instead of its own (most of it then "
                 "goes to the complementary mesh)");

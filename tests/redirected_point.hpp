@@ -7,7 +7,6 @@
 #include <cmath>
 #include <cstddef>
 
-#include <glm/geometric.hpp>
 #include <glm/matrix.hpp>
 #include <glm/vec3.hpp>
 
@@ -45,16 +44,8 @@ inline int contentAt(const Hierarchy& h, BlockId id, const glm::dvec3& p) {
   }
   const Cell& cell = b.cell(c[0], c[1], c[2]);
   if (cell.kind == CellKind::Solid) return solidContains(cell.solid, unit) ? cell.material : -1;
-  if (cell.kind == CellKind::Plane) {
-    // The cut's planes are in the block's frame: p itself, not the cell's unit cube.
-    const PlaneCut& cut = b.cuts[cell.cut];
-    const bool first = glm::dot(cut.planes[0].normal, p) <= cut.planes[0].offsetM;
-    const bool second = glm::dot(cut.planes[1].normal, p) <= cut.planes[1].offsetM;
-    const bool inside = cut.combine == PlaneCombine::One    ? first
-                        : cut.combine == PlaneCombine::Both ? first && second
-                                                            : first || second;
-    return inside ? cell.material : -1;
-  }
+  // A plane cut's planes are in the block's frame: p itself, not the cell's unit cube.
+  if (cell.kind == CellKind::Plane) return cutContains(b.cuts[cell.cut], p) ? cell.material : -1;
   if (cell.kind == CellKind::Empty) return -1;
   const Redirection& r = b.redirections[cell.redirection];
   return contentAt(h, r.target, redirectedPoint(h, b, c, r, p));

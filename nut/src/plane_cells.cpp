@@ -47,6 +47,13 @@ std::uint32_t octahedralCode(double value) {
 
 }  // namespace
 
+bool cutContains(const PlaneCut& cut, const glm::dvec3& p) {
+  const bool first = glm::dot(cut.planes[0].normal, p) <= cut.planes[0].offsetM;
+  if (cut.combine == PlaneCombine::One) return first;
+  const bool second = glm::dot(cut.planes[1].normal, p) <= cut.planes[1].offsetM;
+  return cut.combine == PlaneCombine::Both ? first && second : first || second;
+}
+
 std::optional<EncodedPlane> encodePlane(const CutPlane& p) {
   const double l1 = std::abs(p.normal.x) + std::abs(p.normal.y) + std::abs(p.normal.z);
   if (!(l1 > 0.0) || !std::isfinite(l1) || !std::isfinite(p.offsetM)) return std::nullopt;

@@ -45,16 +45,8 @@ Sample lookup(const Hierarchy& h, BlockId id, glm::dvec3 p, int depth = 0) {
   const Cell& cell = b.cell(c[0], c[1], c[2]);
   if (cell.kind == CellKind::Empty) return {};
   if (cell.kind == CellKind::Solid) return {true, cell.material, cell.solid.index};
-  if (cell.kind == CellKind::Plane) {
-    // Inside the cut of the block's own planes at p (a point of the block's frame).
-    const PlaneCut& cut = b.cuts[cell.cut];
-    const bool first = glm::dot(cut.planes[0].normal, p) <= cut.planes[0].offsetM;
-    const bool second = glm::dot(cut.planes[1].normal, p) <= cut.planes[1].offsetM;
-    const bool inside = cut.combine == PlaneCombine::One    ? first
-                        : cut.combine == PlaneCombine::Both ? first && second
-                                                            : first || second;
-    return inside ? Sample{true, cell.material, format::kCellPlane} : Sample{};
-  }
+  if (cell.kind == CellKind::Plane)
+    return cutContains(b.cuts[cell.cut], p) ? Sample{true, cell.material, format::kCellPlane} : Sample{};
   if (depth > 32) return {};
   const Redirection& r = b.redirections[cell.redirection];
   return lookup(h, r.target, testing::redirectedPoint(h, b, c, r, p), depth + 1);

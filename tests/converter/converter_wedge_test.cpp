@@ -36,6 +36,7 @@
 #include <converter/convert.hpp>
 #include <converter/mesh_check.hpp>
 #include <converter/solid.hpp>
+#include <nut/format.hpp>
 #include <nut/solids.hpp>
 #include <scene/obj.hpp>
 
@@ -357,6 +358,27 @@ TEST(Wedges, LShapedHipRoofWithAValleyRendersLikeItsSource) {
   EXPECT_EQ(f.meshFlatTriangles, 0);
   EXPECT_LE(f.farthestFromCrease, std::sqrt(0.5) + 1e-6);  // within its 1 x 1 m crease cell
   EXPECT_GE(f.roofNutPct, 88.0);  // 230 of 260 m^2
+}
+
+// With plane cells (SolidOptions::planeCells), the crease cells the wedges leave to the mesh
+// become plane cells of the two faces meeting there: a ridge's for the hips, a valley's for the
+// L's inner corner. The roofs are then NUT all over, and render like the source.
+TEST(Wedges, PlaneCellsTakeTheHipsAndTheValleyFromTheMesh) {
+  for (const bool l : {false, true}) {
+    const TriangleMesh mesh = l ? lRoof() : hipRoof();
+    ConvertOptions options;
+    options.solid.planeCells = true;
+    const Conversion c = testing::convertOrFail(mesh, options);
+    const SolidStats& s = c.report.solid;
+    const Figures f = measure(mesh, c, l ? kLCreases : kHips, l ? "l_roof_plane_cells" : "hip_roof_plane_cells");
+    EXPECT_GE(f.fidelity.worstWithinPct, 99.0) << "see converter_wedge/*_plane_cells.view*.diff.png";
+    // Every crease cell (kSteps per hip or valley) becomes a two-plane cell.
+    const int creases = l ? 6 : 4;
+    EXPECT_EQ(s.twoPlaneCells, creases * kSteps);
+    EXPECT_GE(f.roofNutPct, 99.99);
+    EXPECT_LE(f.meshArea, 1e-6);
+    EXPECT_EQ(c.image.at(0, 0)[3], format::kVersionPlanes);
+  }
 }
 
 // Two rectangular pitches: every cell under them is covered whole, so the roof is wedges only, no

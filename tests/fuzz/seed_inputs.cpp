@@ -48,6 +48,14 @@ Result<std::vector<SeedInput>> hniSeeds() {
     if (!image) return Error{"random hierarchy " + std::to_string(seed) + ": " + image.error().message};
     seeds.push_back({"random" + std::to_string(seed), frame(*image)});
   }
+  // Version 3 files: half the solid cells plane cells.
+  testing::RandomHierarchyOptions planes;
+  planes.planeCellShare = 0.5;
+  for (std::uint64_t seed = 0; seed < 8; ++seed) {
+    auto image = compile(testing::randomHierarchy(seed, planes));
+    if (!image) return Error{"random hierarchy with plane cells " + std::to_string(seed) + ": " + image.error().message};
+    seeds.push_back({"planes" + std::to_string(seed), frame(*image)});
+  }
   for (const fs::path& path : filesIn(kSourceDir / "samples/hni")) {
     auto png = readPng(path.string());
     if (!png) return png.error();

@@ -184,11 +184,7 @@ struct Leaf {
   const nut::PlaneCut* cut = nullptr;
   dvec3 blockPoint{0.0};
   bool inside() const {
-    if (cut) {
-      const bool a = glm::dot(cut->planes[0].normal, blockPoint) <= cut->planes[0].offsetM;
-      const bool b = glm::dot(cut->planes[1].normal, blockPoint) <= cut->planes[1].offsetM;
-      return cut->combine == nut::PlaneCombine::One ? a : cut->combine == nut::PlaneCombine::Both ? a && b : a || b;
-    }
+    if (cut) return nut::cutContains(*cut, blockPoint);
     return solid && nut::solidContains(*solid, unit);
   }
 };

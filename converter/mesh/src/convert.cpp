@@ -18,6 +18,7 @@
 #include <converter/axis_order.hpp>
 #include <converter/hidden_cells.hpp>
 #include <converter/mesh_size.hpp>
+#include <converter/plane_fit.hpp>
 #include <converter/share_axes.hpp>
 #include <converter/wings.hpp>
 #include <nut/mesh_export.hpp>
@@ -352,6 +353,13 @@ Status convertInFrame(const TriangleMesh& mesh, const TriangleMesh* enclosing, c
     progress("solid", 0);
     auto built = buildSolidGrid(mesh, solidOptions);
     if (!built) return built.error();
+    if (solidOptions.planeCells) {
+      const PlaneFitStats fitted = fitPlaneCells(*built, enclosing ? *enclosing : mesh, solidOptions);
+      built->stats.planeCells = fitted.planeCells;
+      built->stats.twoPlaneCells = fitted.twoPlaneCells;
+      built->stats.nutAreaM2 += fitted.areaM2;
+      built->stats.complementAreaM2 = std::max(0.0, built->stats.complementAreaM2 - fitted.areaM2);
+    }
     if (coarser > 0)
       report.warnings.push_back("the grid did not fit an HNI (" + lastError + "); built again with " +
                                 (coarser == 1 ? std::string("only slopes that are wedges everywhere")
@@ -626,6 +634,8 @@ std::string reportJson(const ConvertReport& r) {
                 {"quadric_cells", s.quadricCells},
                 {"sphere_octant_cells", s.sphereOctantCells},
                 {"pyramid_cells", s.pyramidCells},
+                {"plane_cells", s.planeCells},
+                {"two_plane_cells", s.twoPlaneCells},
                 {"builds", s.gridBuilds},
                 {"builds_classified", s.gridsClassified},
                 {"winding_columns", s.windingColumns},

@@ -39,6 +39,9 @@ struct PlaneCut {
   friend bool operator==(const PlaneCut&, const PlaneCut&) = default;
 };
 
+// Whether point p of the planes' frame lies inside the cut (a point on a plane counts as inside).
+bool cutContains(const PlaneCut& cut, const glm::dvec3& p);
+
 // A plane as encoded: octahedral coordinates of the normal (u24 each) and the offset (s32, in
 // 1/kPlaneOffsetStepsPerUnit of a unit).
 struct EncodedPlane {

@@ -66,6 +66,9 @@ struct SolidOptions {
   bool wedges = true;               // fit wedge cells to faces sloped along one axis
   bool quadrics = true;             // fit quarter-cylinder and sphere-octant cells to curved pieces
   bool pyramids = true;             // fit pyramid cells to corner slopes (chamfered corners)
+  // Make plane cells (HNI version 3) of the cells the complementary mesh crosses on one or two
+  // planes, and take those faces' parts out of it (plane_fit.hpp).
+  bool planeCells = false;
   // Keep a slope whose cells mostly became wedges, leaving its faces over the other cells to the
   // complementary mesh; false: only slopes that became wedges everywhere stay (a smaller grid).
   bool partialWedges = true;
@@ -104,6 +107,8 @@ struct SolidStats {
   int cornerSlopesAsCells = 0;        // of those, shown by pyramid cells (a cell or a sub-block)
   int cornerSlopesAsSubBlocks = 0;    // of those, shown by a block of their own (cut by other boundaries)
   long long pyramidCells = 0;         // pyramid and inverse pyramid cells
+  long long planeCells = 0;           // plane cells fitted to the complementary mesh (plane_fit.hpp)
+  long long twoPlaneCells = 0;        // of those, with two planes (a ridge, hip or valley)
   long long trimmedCells = 0;         // cut by the complementary mesh and not inside all over: empty
   long long trimBoundaries = 0;       // boundaries added to keep the solid part of such cells (under a roof left to the mesh)
   int gridBuilds = 0;                 // grids built: again for boundaries added, or without a slope given up
