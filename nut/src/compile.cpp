@@ -71,9 +71,7 @@ struct PlaneRecordKey {
   PlaneCombine combine = PlaneCombine::One;
   std::uint16_t material = 0;
   std::uint8_t texture = 0;
-  int pixels() const {
-    return format::kPlaneRecordHeadPixels + format::kPixelsPerPlane * (combine == PlaneCombine::One ? 1 : 2);
-  }
+  int pixels() const { return format::kPlaneRecordHeadPixels + format::kPixelsPerPlane * planeCount(combine); }
   friend auto operator<=>(const PlaneRecordKey&, const PlaneRecordKey&) = default;
 };
 
@@ -460,8 +458,7 @@ void writePlaneRecord(Image& image, const PlaneRecordKey& record, TexelAddress a
   writeU16(q, record.material);
   q[2] = record.texture;
   q[3] = static_cast<std::uint8_t>(record.combine);
-  const int planes = (record.pixels() - format::kPlaneRecordHeadPixels) / format::kPixelsPerPlane;
-  for (int p = 0; p < planes; ++p) {
+  for (int p = 0; p < planeCount(record.combine); ++p) {
     const EncodedPlane& e = record.planes[static_cast<std::size_t>(p)];
     const int first = at.u + format::kPlaneRecordHeadPixels + format::kPixelsPerPlane * p;
     writeU24(image.at(first, at.v), e.octX);

@@ -192,13 +192,10 @@ class ExactTracer {
   // The planes are in the frame of the block's tile 0; the ray is moved into the cell's tile.
   std::optional<CellHit> planeHit(const PlaneCut& cut, const BlockFrame& frame, const glm::dvec3& tileStart,
                                   double s, double e) const {
-    const std::array<glm::dvec3, 2> normals{cut.planes[0].normal, cut.planes[1].normal};
-    const std::array<double, 2> offsets{cut.planes[0].offsetM, cut.planes[1].offsetM};
-    const auto span =
-        intersectPlaneCut<double>(normals, offsets, cut.combine, frame.origin - tileStart, frame.direction, s, e);
+    const auto span = intersectPlaneCut(cut, frame.origin - tileStart, frame.direction, s, e);
     if (!span || (options_.minThicknessM > 0 && span->tOut - span->tIn < options_.minThicknessM)) return std::nullopt;
     if (span->plane < 0) return CellHit{span->tIn, std::nullopt};
-    return CellHit{span->tIn, normals[static_cast<std::size_t>(span->plane)]};
+    return CellHit{span->tIn, cut.planes[static_cast<std::size_t>(span->plane)].normal};
   }
 
   // One cell: the sub-interval [s, e] of the ray, all inside one cell of the frame's block.

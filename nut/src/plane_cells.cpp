@@ -124,6 +124,13 @@ std::optional<PlaneSpan<T>> intersectPlaneCut(const std::array<glm::vec<3, T>, 2
   return PlaneSpan<T>{span.in, span.out, span.plane};
 }
 
+std::optional<PlaneSpan<double>> intersectPlaneCut(const PlaneCut& cut, const glm::dvec3& origin,
+                                                   const glm::dvec3& dir, double tEnter, double tExit) {
+  return intersectPlaneCut<double>({cut.planes[0].normal, cut.planes[1].normal},
+                                   {cut.planes[0].offsetM, cut.planes[1].offsetM}, cut.combine, origin, dir, tEnter,
+                                   tExit);
+}
+
 template std::optional<PlaneSpan<float>> intersectPlaneCut(const std::array<glm::vec3, 2>&, const std::array<float, 2>&,
                                                            PlaneCombine, const glm::vec3&, const glm::vec3&, float,
                                                            float);

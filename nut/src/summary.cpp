@@ -13,25 +13,31 @@ namespace {
 
 constexpr int kSides = 6;
 
-// Fraction of side `side` of the unit cube behind which the solid is visible, looking at the side
-// from outside along its axis: parallel rays through a grid of sample points.
-double solidCoverage(Solid solid, int side) {
+// Share of a side hit by parallel rays through a 24 x 24 grid of sample points: `hit(fu, fv)`
+// traces the ray at fractions (fu, fv) of the side's two axes.
+template <typename Hit>
+double sampledShare(const Hit& hit) {
   constexpr int kSamples = 24;
+  int covered = 0;
+  for (int i = 0; i < kSamples; ++i)
+    for (int j = 0; j < kSamples; ++j) covered += hit((i + 0.5) / kSamples, (j + 0.5) / kSamples);
+  return static_cast<double>(covered) / (kSamples * kSamples);
+}
+
+// Fraction of side `side` of the unit cube behind which the solid is visible, looking at the side
+// from outside along its axis.
+double solidCoverage(Solid solid, int side) {
   const int axis = side / 2;
   const double sign = side % 2 == 0 ? 1.0 : -1.0;
   const int u = (axis + 1) % 3, v = (axis + 2) % 3;
-  int covered = 0;
-  for (int i = 0; i < kSamples; ++i) {
-    for (int j = 0; j < kSamples; ++j) {
-      glm::dvec3 origin(0.0), dir(0.0);
-      origin[u] = (i + 0.5) / kSamples;
-      origin[v] = (j + 0.5) / kSamples;
-      origin[axis] = sign > 0 ? 2.0 : -1.0;
-      dir[axis] = -sign;
-      if (intersectSolid(solid, origin, dir, 1.0, 2.0)) ++covered;
-    }
-  }
-  return static_cast<double>(covered) / (kSamples * kSamples);
+  return sampledShare([&](double fu, double fv) {
+    glm::dvec3 origin(0.0), dir(0.0);
+    origin[u] = fu;
+    origin[v] = fv;
+    origin[axis] = sign > 0 ? 2.0 : -1.0;
+    dir[axis] = -sign;
+    return intersectSolid(solid, origin, dir, 1.0, 2.0).has_value();
+  });
 }
 
 const std::array<std::array<double, kSides>, kSolidCount>& coverageTable() {
@@ -46,26 +52,19 @@ const std::array<std::array<double, kSides>, kSolidCount>& coverageTable() {
   return table;
 }
 
-// The same for a plane cell spanning [lo, hi] of its block: parallel rays through the cell.
+// The same for a plane cell spanning [lo, hi] of its block: the rays run through the cell.
 double planeCellCoverage(const PlaneCut& cut, const glm::dvec3& lo, const glm::dvec3& hi, int side) {
-  constexpr int kSamples = 24;
   const int axis = side / 2;
   const int u = (axis + 1) % 3, v = (axis + 2) % 3;
-  const std::array<glm::dvec3, 2> normals{cut.planes[0].normal, cut.planes[1].normal};
-  const std::array<double, 2> offsets{cut.planes[0].offsetM, cut.planes[1].offsetM};
   glm::dvec3 dir(0.0);
   dir[axis] = side % 2 == 0 ? -1.0 : 1.0;
-  int covered = 0;
-  for (int i = 0; i < kSamples; ++i) {
-    for (int j = 0; j < kSamples; ++j) {
-      glm::dvec3 origin(0.0);
-      origin[u] = lo[u] + (i + 0.5) / kSamples * (hi[u] - lo[u]);
-      origin[v] = lo[v] + (j + 0.5) / kSamples * (hi[v] - lo[v]);
-      origin[axis] = side % 2 == 0 ? hi[axis] : lo[axis];
-      if (intersectPlaneCut<double>(normals, offsets, cut.combine, origin, dir, 0.0, hi[axis] - lo[axis])) ++covered;
-    }
-  }
-  return static_cast<double>(covered) / (kSamples * kSamples);
+  return sampledShare([&](double fu, double fv) {
+    glm::dvec3 origin(0.0);
+    origin[u] = lo[u] + fu * (hi[u] - lo[u]);
+    origin[v] = lo[v] + fv * (hi[v] - lo[v]);
+    origin[axis] = side % 2 == 0 ? hi[axis] : lo[axis];
+    return intersectPlaneCut(cut, origin, dir, 0.0, hi[axis] - lo[axis]).has_value();
+  });
 }
 
 // The side of a redirected block that faces the same way as `side` of the parent cell.

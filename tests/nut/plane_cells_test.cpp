@@ -15,6 +15,7 @@
 #include <nut/plane_cells.hpp>
 #include <nut/summary.hpp>
 
+#include "../expect_rejected.hpp"
 #include "../plane_roofs.hpp"
 #include "../random_hierarchy.hpp"
 
@@ -218,12 +219,7 @@ struct PlaneRecordFixture : ::testing::Test {
     ASSERT_TRUE(cell);
   }
   std::uint8_t* recordPixel(int i) { return image.at(record.u + i, record.v); }
-  void expectRejected(const std::string& needle) const {
-    const Status s = validate(image);
-    ASSERT_FALSE(s.ok()) << "accepted; expected: " << needle;
-    EXPECT_NE(s.error().message.find(needle), std::string::npos) << s.error().message;
-    EXPECT_FALSE(decode(image).ok());
-  }
+  void expectRejected(const std::string& needle) const { testing::expectRejected(image, needle); }
   Image image;
   std::uint8_t* cell = nullptr;
   TexelAddress record;

@@ -71,7 +71,7 @@ struct PlaneRecord {
   std::uint8_t combine = 0;            // PlaneCombine: 1 one plane, 2 both, 3 either
   std::array<EncodedPlane, 2> planes{};  // planes[1] only when combine is 2 or 3
   std::uint8_t reserved = 0;           // OR of the reserved bytes (A of each plane's first two pixels)
-  int planeCount() const { return combine == 1 ? 1 : 2; }
+  int planeCount() const { return nut::planeCount(static_cast<PlaneCombine>(combine)); }
 };
 
 inline std::uint32_t readU24(const std::uint8_t* p) {

@@ -32,10 +32,13 @@ enum class PlaneCombine : std::uint8_t {
   Either = 3,  // inside planes[0] or planes[1]: a valley
 };
 
+// How many planes a combination uses: 1 for One, else 2.
+inline int planeCount(PlaneCombine combine) { return combine == PlaneCombine::One ? 1 : 2; }
+
 struct PlaneCut {
   std::array<CutPlane, 2> planes{};
   PlaneCombine combine = PlaneCombine::One;
-  int planeCount() const { return combine == PlaneCombine::One ? 1 : 2; }
+  int planeCount() const { return nut::planeCount(combine); }
   friend bool operator==(const PlaneCut&, const PlaneCut&) = default;
 };
 
@@ -73,6 +76,10 @@ std::optional<PlaneSpan<T>> intersectPlaneCut(const std::array<glm::vec<3, T>, 2
                                               const std::array<T, 2>& offsets, PlaneCombine combine,
                                               const glm::vec<3, T>& origin, const glm::vec<3, T>& dir, T tEnter,
                                               T tExit);
+
+// The same for a cut of the model: its planes in the ray's frame, metres.
+std::optional<PlaneSpan<double>> intersectPlaneCut(const PlaneCut& cut, const glm::dvec3& origin,
+                                                   const glm::dvec3& dir, double tEnter, double tExit);
 
 extern template std::optional<PlaneSpan<float>> intersectPlaneCut(const std::array<glm::vec3, 2>&,
                                                                   const std::array<float, 2>&, PlaneCombine,
