@@ -176,7 +176,8 @@ struct PlaneCell {
   vec3 normals[2];
   float offsets[2];
   int combine;
-  int material;
+  int material;             // the box's sides
+  int surfaceMaterials[2];  // each plane's surface
 };
 
 // The octahedral pair (e_x, e_y) as a unit normal, with nut::decodeNormalFloat's operations.
@@ -195,11 +196,15 @@ PlaneCell loadPlaneCell(ivec2 at) {
   for (int p = 0; p < 2; ++p) {
     c.normals[p] = vec3(0.0);
     c.offsets[p] = 0.0;
+    c.surfaceMaterials[p] = c.material;
     if (p == 1 && c.combine == kPlaneCombineOne) break;
     ivec2 first = at + ivec2(kPlaneRecordHeadPixels + kPixelsPerPlane * p, 0);
     uvec4 ex = hniTexel(first);
     uvec4 ey = hniTexel(first + ivec2(1, 0));
     uvec4 o = hniTexel(first + ivec2(2, 0));
+    // The surface's material code over the two alpha channels: 0 the record's, k material k - 1.
+    int code = int(ex.a | (ey.a << 8));
+    if (code != 0) c.surfaceMaterials[p] = code - 1;
     c.normals[p] = decodeOctahedral(readU24(ex), readU24(ey));
     c.offsets[p] = float(int(readU24(o) | (o.a << 24))) / kPlaneOffsetStepsPerUnit;
   }

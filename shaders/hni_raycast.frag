@@ -257,7 +257,7 @@ void main() {
         if (!(span.x <= span.y)) continue;
         tHit = span.x;
         normalWorld = span.z < 0.0 ? L.entryNormal : normalize(L.toWorld * cell.normals[int(span.z)]);
-        m = loadMaterial(cell.material);
+        m = loadMaterial(span.z < 0.0 ? cell.material : cell.surfaceMaterials[int(span.z)]);
       } else {
         vec3 size = L.hi - L.lo;
         SolidHit hit = intersectSolid(g - kCellFirstSolid, (L.o - L.tile - L.lo) / size, L.d / size, t, tCellExit);

@@ -51,6 +51,8 @@ PlaneRoof planeRoofHouse(PlaneCombine combine, double ridgeYawDeg, double pitchD
     const double length = glm::length(n);
     roof.cut.planes[static_cast<std::size_t>(s)] = {n / length, glm::dot(n, centre) / length};
   }
+  // The first plane's surface shows a material of its own; the second shows its cell's.
+  roof.cut.surfaceMaterials = {std::uint16_t{2}, std::nullopt};
   roof.lo = {1.0, 1.0, 1.0};
   roof.hi = {9.0, 7.0, 7.0};
   b.cuts.push_back(roof.cut);

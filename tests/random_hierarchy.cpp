@@ -10,6 +10,7 @@ namespace nut::testing {
 
 Hierarchy randomHierarchy(std::uint64_t seed, const RandomHierarchyOptions& o) {
   std::mt19937_64 rng(seed);
+  std::mt19937_64 surfaceRng(~seed);
   const auto uniformInt = [&](int lo, int hi) { return std::uniform_int_distribution<int>(lo, hi)(rng); };
   const auto uniformReal = [&](double lo, double hi) { return std::uniform_real_distribution<double>(lo, hi)(rng); };
   const auto length = [&](double lo, double hi) {
@@ -66,8 +67,15 @@ Hierarchy randomHierarchy(std::uint64_t seed, const RandomHierarchyOptions& o) {
         return CutPlane{n, glm::dot(n, through)};
       };
       const int cuts = uniformInt(1, 4);
-      for (int k = 0; k < cuts; ++k)
-        block.cuts.push_back({{randomPlane(), randomPlane()}, static_cast<PlaneCombine>(uniformInt(1, 3))});
+      for (int k = 0; k < cuts; ++k) {
+        PlaneCut cut{{randomPlane(), randomPlane()}, static_cast<PlaneCombine>(uniformInt(1, 3)), {}};
+        // Some planes show a material of their own, drawn apart so that the geometry of each seed
+        // stays what it was before surface materials.
+        for (auto& surface : cut.surfaceMaterials)
+          if (std::uniform_int_distribution<int>(0, 1)(surfaceRng) == 1)
+            surface = static_cast<std::uint16_t>(std::uniform_int_distribution<int>(0, materials - 1)(surfaceRng));
+        block.cuts.push_back(cut);
+      }
     }
     for (Cell& c : block.cells) {
       const int kind = uniformInt(0, 9);

@@ -68,6 +68,7 @@ struct RecordKey {
 // A plane cell record as encoded; equal keys share one record.
 struct PlaneRecordKey {
   std::array<EncodedPlane, 2> planes{};  // the second is zero for one plane
+  std::array<std::uint16_t, 2> surfaceMaterialCodes{};  // 0: the record's material, k: material k - 1
   PlaneCombine combine = PlaneCombine::One;
   std::uint16_t material = 0;
   std::uint8_t texture = 0;
@@ -151,13 +152,16 @@ Result<Plan> planBlocks(const Hierarchy& h, const CompileOptions& options) {
       if (cell.kind != CellKind::Plane || blockPlan.planeRecords.contains({cell.cut, cell.material, cell.texture}))
         continue;
       const PlaneCut& cut = block.cuts[cell.cut];
-      PlaneRecordKey key{{}, cut.combine, cell.material, cell.texture};
+      PlaneRecordKey key{{}, {}, cut.combine, cell.material, cell.texture};
       for (int p = 0; p < cut.planeCount(); ++p) {
         const auto encoded = encodePlane(cut.planes[static_cast<std::size_t>(p)]);
         if (!encoded)
           return Error{where + " plane cut " + std::to_string(cell.cut) + " plane " + std::to_string(p) +
                        ": offset beyond the encodable +-33.5 km"};
         key.planes[static_cast<std::size_t>(p)] = *encoded;
+        // Material indices stop at 65534 (at most 65535 materials), so the code fits a u16.
+        if (const auto& m = cut.surfaceMaterials[static_cast<std::size_t>(p)])
+          key.surfaceMaterialCodes[static_cast<std::size_t>(p)] = static_cast<std::uint16_t>(*m + 1);
       }
       auto [it, inserted] = planeRecordIndex.try_emplace(key, static_cast<int>(plan.planeRecords.size()));
       if (inserted) plan.planeRecords.push_back(key);
@@ -463,6 +467,9 @@ void writePlaneRecord(Image& image, const PlaneRecordKey& record, TexelAddress a
     const int first = at.u + format::kPlaneRecordHeadPixels + format::kPixelsPerPlane * p;
     writeU24(image.at(first, at.v), e.octX);
     writeU24(image.at(first + 1, at.v), e.octY);
+    const std::uint16_t code = record.surfaceMaterialCodes[static_cast<std::size_t>(p)];
+    image.at(first, at.v)[3] = static_cast<std::uint8_t>(code & 0xff);
+    image.at(first + 1, at.v)[3] = static_cast<std::uint8_t>(code >> 8);
     const auto offset = static_cast<std::uint32_t>(e.offset);
     writeU24(image.at(first + 2, at.v), offset & 0xffffff);
     image.at(first + 2, at.v)[3] = static_cast<std::uint8_t>(offset >> 24);

@@ -114,7 +114,7 @@ bool clipPiece(Piece& piece, const Plane& plane) {
   std::vector<dvec3> onPlane;
   for (const Face& f : piece) {
     std::vector<dvec3> points = clipPolygon(f.points, plane, onPlane);
-    if (points.size() >= 3) clipped.push_back({std::move(points), f.internal});
+    if (points.size() >= 3) clipped.push_back({std::move(points), f.internal, f.material});
   }
   std::vector<dvec3> cap = capPolygon(std::move(onPlane), plane);
   if (cap.size() >= 3) clipped.push_back({std::move(cap), false});

@@ -23,6 +23,7 @@ inline constexpr double kOnPlaneM = 1e-7;
 struct Face {
   std::vector<glm::dvec3> points;  // convex polygon, counter-clockwise seen from outside the piece
   bool internal = false;           // shared with another piece of the same solid: never emitted
+  int material = -1;               // -1: the solid's; else a plane cell's surface material
 };
 using Piece = std::vector<Face>;  // a closed convex polyhedron
 using Triangle = std::array<glm::dvec3, 3>;

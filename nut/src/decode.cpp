@@ -48,8 +48,11 @@ Result<Hierarchy> decode(const Image& image) {
             const PlaneRecord r = view.planeRecord(t.planeRecord);
             PlaneCut cut;
             cut.combine = static_cast<PlaneCombine>(r.combine);
-            for (int p = 0; p < r.planeCount(); ++p)
-              cut.planes[static_cast<std::size_t>(p)] = decodePlane(r.planes[static_cast<std::size_t>(p)]);
+            for (std::size_t p = 0; p < static_cast<std::size_t>(r.planeCount()); ++p) {
+              cut.planes[p] = decodePlane(r.planes[p]);
+              if (r.surfaceMaterialCodes[p] != 0)
+                cut.surfaceMaterials[p] = static_cast<std::uint16_t>(r.surfaceMaterialCodes[p] - 1);
+            }
             // Cuts are listed in order of first use, equal ones once (what quantized() produces).
             auto it = std::find(block.cuts.begin(), block.cuts.end(), cut);
             if (it == block.cuts.end()) it = block.cuts.insert(block.cuts.end(), cut);

@@ -170,6 +170,7 @@ class ExactTracer {
   struct CellHit {
     double t;
     std::optional<glm::dvec3> normal;
+    std::optional<std::uint16_t> material;  // a plane's surface material, when not the cell's
   };
 
   std::optional<CellHit> solidHit(Solid solid, const BlockFrame& frame, const glm::dvec3& cellMin,
@@ -195,7 +196,8 @@ class ExactTracer {
     const auto span = intersectPlaneCut(cut, frame.origin - tileStart, frame.direction, s, e);
     if (!span || (options_.minThicknessM > 0 && span->tOut - span->tIn < options_.minThicknessM)) return std::nullopt;
     if (span->plane < 0) return CellHit{span->tIn, std::nullopt};
-    return CellHit{span->tIn, cut.planes[static_cast<std::size_t>(span->plane)].normal};
+    const auto p = static_cast<std::size_t>(span->plane);
+    return CellHit{span->tIn, cut.planes[p].normal, cut.surfaceMaterials[p]};
   }
 
   // One cell: the sub-interval [s, e] of the ray, all inside one cell of the frame's block.
@@ -230,7 +232,7 @@ class ExactTracer {
         if (glm::dot(n, frame.direction) > 0) n = -n;
         surface = {depth(), frame.toWorld * n};
       }
-      const Material& m = h_.materials[cell.material];
+      const Material& m = h_.materials[hit->material.value_or(cell.material)];
       const auto shaded = shade({m.r, m.g, m.b}, surface.worldNormal, worldDirection_);
       if (m.opacity < 255) {
         addLayer(shaded, m.opacity / 255.0);

@@ -167,6 +167,10 @@ Status checkHierarchy(const Hierarchy& h) {
         if (!std::isfinite(length) || std::abs(length - 1.0) > 1e-6 || !std::isfinite(plane.offsetM))
           return Error{cw + " plane " + std::to_string(p) +
                        ": normal is not a finite unit vector or offset not finite"};
+        const auto& surface = cut.surfaceMaterials[static_cast<std::size_t>(p)];
+        if (surface && *surface >= h.materials.size())
+          return Error{cw + " plane " + std::to_string(p) + ": surface material " + std::to_string(*surface) +
+                       " out of range (" + std::to_string(h.materials.size()) + " materials)"};
       }
     }
     for (std::size_t r = 0; r < block.redirections.size(); ++r) {
@@ -227,6 +231,7 @@ Hierarchy quantized(const Hierarchy& h) {
     for (Cell& c : block.cells) {
       if (c.kind == CellKind::Plane) {
         PlaneCut cut = block.cuts[c.cut];
+        for (int p = cut.planeCount(); p < 2; ++p) cut.surfaceMaterials[static_cast<std::size_t>(p)].reset();
         for (int p = 0; p < 2; ++p)
           cut.planes[static_cast<std::size_t>(p)] =
               p < cut.planeCount() ? quantizedPlane(cut.planes[static_cast<std::size_t>(p)]) : CutPlane{};

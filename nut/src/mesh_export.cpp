@@ -335,6 +335,7 @@ class Exporter {
   void emitPieces(const Instance& inst, std::vector<Piece> pieces, const std::vector<Plane>& cutting,
                   std::uint16_t material) {
     std::vector<Triangle> triangles;
+    std::vector<std::uint16_t> faceMaterials;  // per triangle
     for (Piece& piece : pieces) {
       for (Face& f : piece)
         for (dvec3& p : f.points) p = inst.frame.apply(p);
@@ -342,10 +343,14 @@ class Exporter {
       for (const Plane& plane : cutting)
         if (!(left = clipPiece(piece, plane))) break;
       if (!left) continue;
-      for (const Face& f : piece)
-        if (!f.internal) triangulateConvex(f.points, triangles);
+      for (const Face& f : piece) {
+        if (f.internal) continue;
+        triangulateConvex(f.points, triangles);
+        faceMaterials.resize(triangles.size(), f.material < 0 ? material : static_cast<std::uint16_t>(f.material));
+      }
     }
-    for (const Triangle& t : triangles) triangle(vertex(t[0]), vertex(t[1]), vertex(t[2]), material);
+    for (std::size_t k = 0; k < triangles.size(); ++k)
+      triangle(vertex(triangles[k][0]), vertex(triangles[k][1]), vertex(triangles[k][2]), faceMaterials[k]);
   }
 
   // A plane cell: its box clipped by its planes (block frame, moved into the tile), one convex
@@ -389,6 +394,14 @@ class Exporter {
       for (auto* piece : {&both, &firstOnly, &secondOnly})
         if (*piece) pieces.push_back(**piece);
     }
+    // The faces on a plane show its surface material.
+    for (Piece& piece : pieces)
+      for (Face& f : piece)
+        for (std::size_t p = 0; p < static_cast<std::size_t>(cut.planeCount()); ++p)
+          if (cut.surfaceMaterials[p] && std::all_of(f.points.begin(), f.points.end(), [&](const dvec3& q) {
+                return std::abs(planes[p].distance(q)) <= kOnPlaneM;
+              }))
+            f.material = *cut.surfaceMaterials[p];
     emitPieces(inst, std::move(pieces), cutting, cell.material);
   }
 

@@ -227,12 +227,14 @@ void HniRayCaster::addPlaneCell(std::uint32_t packedRecord) {
   if (!added) return;
   const PlaneRecord record = view_.planeRecord(unpackAddress(packedRecord));
   PlaneCell cell{{glm::vec3(0.0f), glm::vec3(0.0f)}, {0.0f, 0.0f}, static_cast<PlaneCombine>(record.combine),
-                 record.material};
+                 record.material, {record.material, record.material}};
   // Decoded in float with the shader's operations, so that both casters cut the same planes.
   for (std::size_t p = 0; p < static_cast<std::size_t>(record.planeCount()); ++p) {
     const EncodedPlane& e = record.planes[p];
     cell.normals[p] = decodeNormalFloat(e.octX, e.octY);
     cell.offsets[p] = static_cast<float>(e.offset) / static_cast<float>(format::kPlaneOffsetStepsPerUnit);
+    if (record.surfaceMaterialCodes[p] != 0)
+      cell.surfaceMaterials[p] = static_cast<std::uint16_t>(record.surfaceMaterialCodes[p] - 1);
   }
   planeCells_.push_back(cell);
 }
@@ -364,7 +366,8 @@ class HniRayCaster::Walk {
     const auto span = intersectPlaneCut<float>(cell.normals, cell.offsets, cell.combine, toVec(L.o) - toVec(L.tile),
                                                toVec(L.d), t, tCellExit);
     if (!span) return false;
-    const Material& m = caster_.materials_[cell.material];
+    const Material& m = caster_.materials_[span->plane < 0 ? cell.material
+                                                           : cell.surfaceMaterials[static_cast<std::size_t>(span->plane)]];
     const glm::vec3 normalWorld =
         span->tIn <= 0    ? -directionF_
         : span->plane < 0 ? entryNormalWorld(stack_.data(), top, directionF_)

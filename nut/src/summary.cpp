@@ -52,19 +52,24 @@ const std::array<std::array<double, kSides>, kSolidCount>& coverageTable() {
   return table;
 }
 
-// The same for a plane cell spanning [lo, hi] of its block: the rays run through the cell.
-double planeCellCoverage(const PlaneCut& cut, const glm::dvec3& lo, const glm::dvec3& hi, int side) {
+// The same for a plane cell spanning [lo, hi] of its block, per surface the rays hit first: the
+// box's side (0) or plane 0 or 1 (1, 2), which may show other materials.
+std::array<double, 3> planeCellCoverage(const PlaneCut& cut, const glm::dvec3& lo, const glm::dvec3& hi, int side) {
   const int axis = side / 2;
   const int u = (axis + 1) % 3, v = (axis + 2) % 3;
   glm::dvec3 dir(0.0);
   dir[axis] = side % 2 == 0 ? -1.0 : 1.0;
-  return sampledShare([&](double fu, double fv) {
-    glm::dvec3 origin(0.0);
-    origin[u] = lo[u] + fu * (hi[u] - lo[u]);
-    origin[v] = lo[v] + fv * (hi[v] - lo[v]);
-    origin[axis] = side % 2 == 0 ? hi[axis] : lo[axis];
-    return intersectPlaneCut(cut, origin, dir, 0.0, hi[axis] - lo[axis]).has_value();
-  });
+  std::array<double, 3> shares{};
+  for (int surface = 0; surface < 3; ++surface)
+    shares[static_cast<std::size_t>(surface)] = sampledShare([&](double fu, double fv) {
+      glm::dvec3 origin(0.0);
+      origin[u] = lo[u] + fu * (hi[u] - lo[u]);
+      origin[v] = lo[v] + fv * (hi[v] - lo[v]);
+      origin[axis] = side % 2 == 0 ? hi[axis] : lo[axis];
+      const auto span = intersectPlaneCut(cut, origin, dir, 0.0, hi[axis] - lo[axis]);
+      return span && span->plane + 1 == surface;
+    });
+  return shares;
 }
 
 // The side of a redirected block that faces the same way as `side` of the parent cell.
@@ -109,11 +114,18 @@ VisualSummary summarize(const Hierarchy& h, const Block& block,
             colour = glm::dvec3(m.r, m.g, m.b);
             opacity = coverage[cell.solid.index][static_cast<std::size_t>(side)] * m.opacity / 255.0;
           } else if (cell.kind == CellKind::Plane) {
-            const Material& m = h.materials[cell.material];
-            colour = glm::dvec3(m.r, m.g, m.b);
+            const PlaneCut& cut = block.cuts[cell.cut];
             glm::dvec3 lo, hi;
             for (int a = 0; a < 3; ++a) lo[a] = block.boundsM[a][c[a]], hi[a] = block.boundsM[a][c[a] + 1];
-            opacity = planeCellCoverage(block.cuts[cell.cut], lo, hi, side) * m.opacity / 255.0;
+            const std::array<double, 3> shares = planeCellCoverage(cut, lo, hi, side);
+            glm::dvec3 weighted(0.0);
+            for (std::size_t k = 0; k < 3; ++k) {
+              const Material& m =
+                  h.materials[k == 0 ? cell.material : cut.surfaceMaterials[k - 1].value_or(cell.material)];
+              opacity += shares[k] * m.opacity / 255.0;
+              weighted += shares[k] * m.opacity / 255.0 * glm::dvec3(m.r, m.g, m.b);
+            }
+            if (opacity > 0) colour = weighted / opacity;
           } else if (cell.kind == CellKind::Redirection) {
             const Redirection& r = block.redirections[cell.redirection];
             const Rgba8 s = done[r.target][static_cast<std::size_t>(targetSide(r.rotation, side))];

@@ -273,11 +273,14 @@ class Validator {
     if (record.texture > file_.textureCount)
       return Error{rw + ": texture " + std::to_string(record.texture) + " out of range (" +
                    std::to_string(file_.textureCount) + " texture infos)"};
-    if (record.reserved != 0) return Error{rw + ": reserved bytes are not zero"};
     for (int i = 0; i < record.planeCount(); ++i) {
       const EncodedPlane& e = record.planes[static_cast<std::size_t>(i)];
       if (e.octX == 0 || e.octY == 0)
         return Error{rw + " plane " + std::to_string(i) + ": octahedral coordinate 0 (the range starts at 1)"};
+      const std::uint16_t code = record.surfaceMaterialCodes[static_cast<std::size_t>(i)];
+      if (code > file_.materialCount)
+        return Error{rw + " plane " + std::to_string(i) + ": surface material " + std::to_string(code - 1) +
+                     " out of range (" + std::to_string(file_.materialCount) + " materials)"};
     }
     return Ok{};
   }

@@ -237,5 +237,39 @@ TEST(ExternalFidelityEachBuilding, Zurich) {
               worst.size(), worst.front(), worst[worst.size() / 10], worst[worst.size() / 2]);
 }
 
+// A generated LoD2 district (tests/data/lod2_district_seed1.obj, from `python3
+// scripts/lod2-district.py --seed 1 --buildings 30`): footprints with walls at odd angles, roofs
+// at any pitch and direction. Each building is converted on its own with plane cells and must
+// render like its source from the views fitted to it; plane cells take most of what the wedges
+// leave to the complementary mesh.
+TEST(GeneratedDistrict, PlaneCellsTakeMostOfTheSurfaceAndRenderLikeTheSource) {
+  auto obj = scene::readObj(std::string(NUT_SOURCE_DIR) + "/tests/data/lod2_district_seed1.obj");
+  ASSERT_TRUE(obj.ok()) << obj.error().message;
+  ConvertOptions planes;
+  planes.solid.planeCells = true;
+  double area = 0, nutOff = 0, nutOn = 0;
+  std::size_t trianglesOff = 0, trianglesOn = 0;
+  double lowest = 100;
+  for (const TriangleMesh& building : obj->objects) {
+    auto off = convertMesh(building);
+    auto on = convertMesh(building, planes);
+    ASSERT_TRUE(off.ok() && on.ok()) << building.name;
+    area += on->report.solid.areaM2;
+    nutOff += off->report.solid.nutAreaM2;
+    nutOn += on->report.solid.nutAreaM2;
+    trianglesOff += off->complement.triangles.size();
+    trianglesOn += on->complement.triangles.size();
+    const std::string stem = testing::outputDir("converter_fidelity") + "/district_" + building.name;
+    const testing::Fidelity f = testing::measureFidelity(building, {&*on}, stem, 99.0);
+    EXPECT_GE(f.worstWithinPct, 99.0) << building.name << ": see " << stem << ".view*.diff.png";
+    lowest = std::min(lowest, f.worstWithinPct);
+  }
+  std::printf("generated district, %zu buildings: NUT surface %.1f %% -> %.1f %% with plane cells, "
+              "complementary triangles %zu -> %zu; worst view of any building within 8/255: %.2f %%\n",
+              obj->objects.size(), 100 * nutOff / area, 100 * nutOn / area, trianglesOff, trianglesOn, lowest);
+  EXPECT_GE(nutOn, 0.90 * area);
+  EXPECT_LE(trianglesOn, trianglesOff / 3);
+}
+
 }  // namespace
 }  // namespace nut::converter

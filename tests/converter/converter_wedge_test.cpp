@@ -381,6 +381,66 @@ TEST(Wedges, PlaneCellsTakeTheHipsAndTheValleyFromTheMesh) {
   }
 }
 
+// Roofs and walls at angles no wedge has, in one material: a shed roof sloped along both
+// horizontal axes over a box (the plane corners of its roof become boundaries), and the same roof
+// over a trapezoid whose two side walls stand at odd angles to the others. With plane cells, the
+// roof's cells become one-plane cells, and where a side wall meets the roof two-plane cells; the
+// faces the boxes already show leave the mesh too, and nothing is left to the complementary mesh.
+TriangleMesh tiltedShed() {
+  MeshBuilder b("tilted_shed");
+  const auto top = [](double x, double z) { return dvec3(x, 6 + 0.3 * x + 0.2 * z, z); };
+  b.polygon({{0, 0, 0}, {12, 0, 0}, {12, 0, 10}, {0, 0, 10}}, kDown, kWall);
+  b.polygon({{0, 0, 0}, {12, 0, 0}, top(12, 0), top(0, 0)}, kSouth, kWall);
+  b.polygon({{0, 0, 10}, {12, 0, 10}, top(12, 10), top(0, 10)}, kNorth, kWall);
+  b.polygon({{0, 0, 0}, {0, 0, 10}, top(0, 10), top(0, 0)}, kWest, kWall);
+  b.polygon({{12, 0, 0}, {12, 0, 10}, top(12, 10), top(12, 0)}, kEast, kWall);
+  b.polygon({top(0, 0), top(12, 0), top(12, 10), top(0, 10)}, kUp, kWall);
+  return b.mesh;
+}
+
+TriangleMesh trapezoidHouse() {
+  MeshBuilder b("trapezoid_house");
+  const std::array<dvec3, 4> foot{dvec3(0, 0, 0), dvec3(14, 0, 0), dvec3(11, 0, 9), dvec3(2, 0, 9)};
+  const auto top = [](const dvec3& q) { return dvec3(q.x, 6 + 0.25 * q.x + 0.15 * q.z, q.z); };
+  b.polygon({foot[0], foot[1], foot[2], foot[3]}, kDown, kWall);
+  b.polygon({top(foot[0]), top(foot[1]), top(foot[2]), top(foot[3])}, kUp, kWall);
+  for (std::size_t i = 0; i < 4; ++i) {
+    const dvec3 a = foot[i], c = foot[(i + 1) % 4];
+    const dvec3 outward = glm::normalize(dvec3(c.z - a.z, 0, a.x - c.x));
+    b.polygon({a, c, top(c), top(a)}, outward, kWall);
+  }
+  return b.mesh;
+}
+
+TEST(Wedges, PlaneCellsTakeRoofsAndWallsAtAnyAngle) {
+  for (const bool shed : {true, false}) {
+    const TriangleMesh mesh = shed ? tiltedShed() : trapezoidHouse();
+    ConvertOptions options;
+    options.solid.planeCells = true;
+    options.alignYaw = false;  // the trapezoid's odd walls stay odd in its own frame
+    const Conversion c = testing::convertOrFail(mesh, options);
+    const SolidStats& s = c.report.solid;
+    const Figures f = measure(mesh, c, {}, mesh.name);
+    std::printf("%s: %lld plane cells (%lld of two planes), %lld boundaries at plane corners\n", mesh.name.c_str(),
+                s.planeCells, s.twoPlaneCells, s.planeBoundaries);
+    EXPECT_GE(f.fidelity.worstWithinPct, 99.0) << "see converter_wedge/" << mesh.name << ".view*.diff.png";
+    EXPECT_GT(s.planeCells, 0);
+    if (!shed) {
+      EXPECT_GT(s.twoPlaneCells, 0);
+    }
+    EXPECT_EQ(f.meshTriangles, 0);
+    EXPECT_NEAR(s.nutAreaM2 + s.hiddenAreaM2, s.areaM2, 1e-6 * s.areaM2);
+    EXPECT_EQ(c.image.at(0, 0)[3], format::kVersionPlanes);
+    // Without plane cells the sloped roof and the odd walls are the mesh's.
+    options.solid.planeCells = false;
+    const Conversion without = testing::convertOrFail(mesh, options);
+    const SolidStats& w = without.report.solid;
+    std::printf("%s without plane cells: surface NUT %.2f %%, %zu triangles in the complementary mesh\n",
+                mesh.name.c_str(), 100 * w.nutAreaM2 / w.areaM2, without.complement.triangles.size());
+    EXPECT_GT(without.complement.triangles.size(), 0u);
+  }
+}
+
 // Two rectangular pitches: every cell under them is covered whole, so the roof is wedges only, no
 // crease points are added and nothing goes to the complementary mesh. Walls and roof differ in
 // material: each gable end (6 m^2) is a small share of its cell (one wedge under a 50 m^2 pitch)

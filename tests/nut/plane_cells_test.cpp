@@ -199,6 +199,13 @@ TEST(PlaneCells, ModelErrorsNameTheCell) {
   image = compile(h);
   ASSERT_FALSE(image.ok());
   EXPECT_NE(image.error().message.find("33.5 km"), std::string::npos) << image.error().message;
+  h = roof.h;
+  h.blocks[0].cuts[0].surfaceMaterials[1] = 3;
+  image = compile(h);
+  ASSERT_FALSE(image.ok());
+  EXPECT_NE(image.error().message.find("block 0 plane cut 0 plane 1: surface material 3 out of range"),
+            std::string::npos)
+      << image.error().message;
 }
 
 // Hostile plane records: each rule of docs/FORMAT.md ("Plane cell record") broken on purpose.
@@ -245,10 +252,18 @@ TEST_F(PlaneRecordFixture, MaterialAndTextureOutOfRange) {
   expectRejected("texture 1 out of range");
 }
 
-TEST_F(PlaneRecordFixture, ReservedBytesAndZeroCodes) {
-  recordPixel(2)[3] = 1;
-  expectRejected("reserved bytes are not zero");
+TEST_F(PlaneRecordFixture, SurfaceMaterialsAndZeroCodes) {
+  recordPixel(2)[3] = 1;  // the high byte of plane 0's surface material code, whose low byte is 3
+  expectRejected("plane 0: surface material 258 out of range");
   recordPixel(2)[3] = 0;
+  recordPixel(4)[3] = 4;  // plane 1's code 4: material 3, and the house has three
+  expectRejected("plane 1: surface material 3 out of range");
+  recordPixel(4)[3] = 3;  // material 2: plane 1's surface shows it
+  ASSERT_TRUE(validate(image).ok());
+  const auto decoded = decode(image);
+  ASSERT_TRUE(decoded.ok());
+  EXPECT_EQ(decoded->blocks[0].cuts[0].surfaceMaterials[1], std::optional<std::uint16_t>(2));
+  recordPixel(4)[3] = 0;
   recordPixel(4)[0] = recordPixel(4)[1] = recordPixel(4)[2] = 0;
   expectRejected("octahedral coordinate 0");
 }

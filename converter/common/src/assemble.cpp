@@ -165,18 +165,26 @@ Result<int> splitBlocks(Hierarchy& h) {
 
 void compactMaterials(Hierarchy& h) {
   std::vector<int> remap(h.materials.size(), -1);
-  for (const Block& b : h.blocks)
+  for (const Block& b : h.blocks) {
     for (const Cell& c : b.cells)
       if (c.hasMaterial()) remap[c.material] = 0;
+    for (const PlaneCut& cut : b.cuts)
+      for (const auto& m : cut.surfaceMaterials)
+        if (m) remap[*m] = 0;
+  }
   std::vector<Material> kept;
   for (std::size_t m = 0; m < remap.size(); ++m)
     if (remap[m] == 0) {
       remap[m] = static_cast<int>(kept.size());
       kept.push_back(h.materials[m]);
     }
-  for (Block& b : h.blocks)
+  for (Block& b : h.blocks) {
     for (Cell& c : b.cells)
       if (c.hasMaterial()) c.material = static_cast<std::uint16_t>(remap[c.material]);
+    for (PlaneCut& cut : b.cuts)
+      for (auto& m : cut.surfaceMaterials)
+        if (m) m = static_cast<std::uint16_t>(remap[*m]);
+  }
   h.materials = std::move(kept);
 }
 

@@ -333,6 +333,13 @@ bool buildHni(const SolidGrid& grid, const ConvertOptions& options, Conversion& 
 
 using Progress = std::function<void(std::string_view, double)>;
 
+// What a building's files take: its HNI as a small PNG and its complementary mesh as a gzipped
+// GLB (none when the mesh is empty).
+std::size_t outputBytes(const Image& image, const TriangleMesh& complement) {
+  return encodePng(image, nullptr, PngEffort::Small).size() +
+         (complement.triangles.empty() ? 0 : measureMesh(complement).glbGzipBytes);
+}
+
 // Converts the mesh in the frame it is in into `out`: its solid grid, and the smallest hierarchy
 // made from it. When no hierarchy fits an HNI, the grid is built again coarser: first keeping
 // only slopes that became wedges everywhere, then with the tolerance doubled, each time with a
@@ -351,14 +358,24 @@ Status convertInFrame(const TriangleMesh& mesh, const TriangleMesh* enclosing, c
     if (coarser > 0) solidOptions.partialWedges = false;
     if (coarser > 1) solidOptions.toleranceM *= std::pow(2.0, coarser - 1);
     progress("solid", 0);
-    auto built = buildSolidGrid(mesh, solidOptions);
+    SolidOptions plainOptions = solidOptions;
+    plainOptions.planeCells = false;
+    auto built = buildSolidGrid(mesh, plainOptions);
     if (!built) return built.error();
-    if (solidOptions.planeCells) {
-      const PlaneFitStats fitted = fitPlaneCells(*built, enclosing ? *enclosing : mesh, solidOptions);
-      built->stats.planeCells = fitted.planeCells;
-      built->stats.twoPlaneCells = fitted.twoPlaneCells;
-      built->stats.nutAreaM2 += fitted.areaM2;
-      built->stats.complementAreaM2 = std::max(0.0, built->stats.complementAreaM2 - fitted.areaM2);
+    // With plane cells, a second candidate: the grid built with boundaries at the planes' corners
+    // (solid.hpp), when it adds any, and plane cells fitted to it.
+    std::optional<SolidGrid> planeGrid;
+    if (solidOptions.planeCells && !built->complement.triangles.empty()) {
+      auto cornered = buildSolidGrid(mesh, solidOptions);
+      planeGrid = cornered && cornered->stats.planeBoundaries > 0 ? std::move(*cornered) : *built;
+      const PlaneFitStats fitted = fitPlaneCells(*planeGrid, enclosing ? *enclosing : mesh, solidOptions);
+      SolidStats& s = planeGrid->stats;
+      s.planeCells = fitted.planeCells;
+      s.twoPlaneCells = fitted.twoPlaneCells;
+      s.nutAreaM2 += fitted.areaM2;
+      s.complementAreaM2 = std::max(0.0, s.complementAreaM2 - fitted.areaM2);
+      s.drawnTwiceAreaM2 = std::max(0.0, s.drawnTwiceAreaM2 - fitted.drawnTwiceM2);
+      if (fitted.planeCells == 0) planeGrid.reset();
     }
     if (coarser > 0)
       report.warnings.push_back("the grid did not fit an HNI (" + lastError + "); built again with " +
@@ -377,6 +394,21 @@ Status convertInFrame(const TriangleMesh& mesh, const TriangleMesh* enclosing, c
     const std::string suffix = part + (coarser == 0 ? "" : " (coarser " + std::to_string(coarser) + ")");
     phases.end("solid" + suffix);
     const bool fits = buildHni(*grid, options, out, report, lastError, progress);
+    // A plane cell never equals a cell elsewhere, so plane cells break the block's repeats: the
+    // grid with them is kept only when its PNG and complementary mesh together are smaller.
+    if (fits && planeGrid) {
+      Conversion withPlanes;
+      ConvertReport planeReport = report;
+      planeReport.solid = planeGrid->stats;
+      std::string planeError;
+      if (buildHni(*planeGrid, options, withPlanes, planeReport, planeError, progress) &&
+          outputBytes(withPlanes.image, planeGrid->complement) < outputBytes(out.image, grid->complement)) {
+        out.hierarchy = std::move(withPlanes.hierarchy);
+        out.image = std::move(withPlanes.image);
+        report = std::move(planeReport);
+        grid = std::move(planeGrid);
+      }
+    }
     phases.end("hierarchy" + suffix);
     if (fits) break;
     grid.reset();
@@ -629,6 +661,7 @@ std::string reportJson(const ConvertReport& r) {
                 {"material_boundaries", s.materialBoundaries},
                 {"trimmed_cells", s.trimmedCells},
                 {"trim_boundaries", s.trimBoundaries},
+                {"plane_boundaries", s.planeBoundaries},
                 {"solid_cells", s.solidCells},
                 {"wedge_cells", s.wedgeCells},
                 {"quadric_cells", s.quadricCells},

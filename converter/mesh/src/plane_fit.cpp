@@ -17,6 +17,8 @@
 
 #include <converter/winding.hpp>
 
+#include "plane_clusters.hpp"
+
 namespace nut::converter {
 
 namespace {
@@ -74,44 +76,18 @@ Polygon clipToBox(Polygon p, const Box& box) {
   return p.size() >= 3 ? p : Polygon{};
 }
 
-struct Plane {
-  dvec3 normal;   // unit, outward: the solid is dot(normal, p) <= offset
-  double offset;  // world
-};
+using Plane = ClusterPlane;  // outward: the solid is dot(normal, p) <= offset
 
-// Triangles clustered into planes, largest first: a triangle joins the first plane whose normal is
-// within the angle and which all its corners lie within the tolerance of. The plane is the first
-// triangle's, so that every cell a plane crosses cuts exactly the same one.
-std::vector<int> clusterPlanes(const TriangleMesh& m, const std::vector<double>& areas, double cosAngle, double tol,
-                               std::vector<Plane>& planes) {
-  std::vector<std::uint32_t> order(m.triangles.size());
-  for (std::uint32_t t = 0; t < order.size(); ++t) order[t] = t;
-  std::sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) { return areas[a] > areas[b]; });
-  std::vector<int> planeOf(m.triangles.size(), -1);
-  for (const std::uint32_t t : order) {
-    if (areas[t] <= 0) continue;
-    const auto& tri = m.triangles[t];
-    const dvec3 p0 = m.positions[tri[0]], p1 = m.positions[tri[1]], p2 = m.positions[tri[2]];
-    const dvec3 n = glm::normalize(glm::cross(p1 - p0, p2 - p0));
-    for (std::size_t k = 0; k < planes.size() && planeOf[t] < 0; ++k) {
-      const Plane& q = planes[k];
-      if (glm::dot(q.normal, n) < cosAngle) continue;
-      bool near = true;
-      for (const dvec3& p : {p0, p1, p2}) near = near && std::abs(glm::dot(q.normal, p) - q.offset) <= tol;
-      if (near) planeOf[t] = static_cast<int>(k);
-    }
-    if (planeOf[t] < 0) {
-      planeOf[t] = static_cast<int>(planes.size());
-      planes.push_back({n, glm::dot(n, p0)});
-    }
-  }
-  return planeOf;
-}
-
-// A complementary triangle's part in one cell.
+// A complementary triangle's part in one cell: on a plane of the cut, or on a side of the cell's
+// box (an axis-aligned face the grid left to the mesh, which the plane cell's box shows).
 struct Crossing {
   std::uint32_t triangle;
   double area;
+  int side = -1;  // 2 * axis + (1 on the + side) for a face on the box, else -1
+  // Narrower than the tolerance (a triangle along the cell's edge, a boundary snapped to
+  // millimetres beside the triangle's): the cell need not show it, but the triangle leaves the
+  // mesh only if the cell fits.
+  bool narrow = false;
 };
 
 class Fitter {
@@ -127,36 +103,61 @@ class Fitter {
     if (m.triangles.empty() || m.triangles.size() > kMaxTriangles) return stats_;
     std::vector<double> areas(m.triangles.size());
     for (std::size_t t = 0; t < areas.size(); ++t) areas[t] = area(polygonOf(t));
-    const std::vector<int> planeOf = clusterPlanes(m, areas, cosAngle_, tol_, planes_);
+    std::vector<std::array<dvec3, 3>> corners(m.triangles.size());
+    for (std::size_t t = 0; t < corners.size(); ++t) {
+      const auto& tri = m.triangles[t];
+      corners[t] = {m.positions[tri[0]], m.positions[tri[1]], m.positions[tri[2]]};
+    }
+    const std::vector<int> planeOf = clusterPlanes(corners, cosAngle_, tol_, planes_);
     if (!collectCrossings(areas)) return stats_;
-    std::map<std::size_t, Fit> fits;
+    std::map<std::size_t, Fit> fitted;
     for (const auto& [cell, crossings] : crossings_) {
       ++stats_.candidateCells;
-      if (auto fit = fitCell(cell, crossings, planeOf)) fits.emplace(cell, *fit);
+      if (auto fit = fitCell(cell, crossings, planeOf)) fitted.emplace(cell, *fit);
     }
     // A triangle leaves the mesh only whole: every cell it crosses must fit, and every other
     // triangle crossing those cells leave too. Cutting faces around the cells that fit would leave
     // the mesh more triangles than it had.
-    std::vector<bool> leaves(m.triangles.size(), true);
+    // A narrow part neither blocks a cell nor is blocked by one, unless all of its triangle is
+    // narrow (a sliver): that leaves only where every cell it touches fits.
+    std::vector<bool> leaves(m.triangles.size(), true), sliver(m.triangles.size(), true);
+    std::vector<double> inCells(m.triangles.size(), 0.0);
+    for (const auto& [cell, crossings] : crossings_)
+      for (const Crossing& x : crossings) {
+        sliver[x.triangle] = sliver[x.triangle] && x.narrow;
+        inCells[x.triangle] += x.area;
+      }
+    // A triangle partly outside every cell (beyond the grid by more than the tolerance) stays.
+    for (std::size_t t = 0; t < leaves.size(); ++t)
+      leaves[t] = inCells[t] >= areas[t] - tol_ * perimeter(polygonOf(t));
     for (bool changed = true; changed;) {
       changed = false;
       for (const auto& [cell, crossings] : crossings_) {
-        bool taken = fits.count(cell) > 0;
-        for (const Crossing& x : crossings) taken = taken && leaves[x.triangle];
-        if (taken) continue;
+        const bool fits = fitted.count(cell) > 0;
+        bool taken = fits;
+        for (const Crossing& x : crossings) taken = taken && (x.narrow || leaves[x.triangle]);
         for (const Crossing& x : crossings)
-          if (leaves[x.triangle]) leaves[x.triangle] = false, changed = true;
+          if (leaves[x.triangle] && (x.narrow ? sliver[x.triangle] && !fits : !taken))
+            leaves[x.triangle] = false, changed = true;
       }
     }
-    for (const auto& [cell, fit] : fits) {
-      if (!leaves[crossings_.at(cell).front().triangle]) continue;
+    for (const auto& [cell, fit] : fitted) {
+      const auto& crossings = crossings_.at(cell);
+      if (fit.keepsCell || !std::all_of(crossings.begin(), crossings.end(),
+                                        [&](const Crossing& x) { return x.narrow || leaves[x.triangle]; }))
+        continue;
       const auto [it, added] = cutIndex_.try_emplace(fit.key, static_cast<std::uint32_t>(grid_.block.cuts.size()));
       if (added) grid_.block.cuts.push_back(fit.cut);
       grid_.block.cells[cell] = Cell::planeCell(it->second, fit.material);
       ++stats_.planeCells;
       stats_.twoPlaneCells += fit.cut.planeCount() == 2;
     }
-    if (stats_.planeCells > 0) removeLeaving(leaves, areas);
+    // The leaving faces' parts: in boxes that showed them already, or moved into plane cells.
+    for (const auto& [cell, crossings] : crossings_)
+      for (const Crossing& x : crossings)
+        if (leaves[x.triangle] && fitted.count(cell))
+          (fitted.at(cell).keepsCell ? stats_.drawnTwiceM2 : stats_.areaM2) += x.area;
+    removeLeaving(leaves);
     return stats_;
   }
 
@@ -182,6 +183,26 @@ class Fitter {
     return box;
   }
 
+  // Where an axis-aligned triangle lies on a grid boundary (its corners within the tolerance of
+  // it): the side of the cell behind it (against its normal, where the solid is) and that cell's
+  // layer along the axis, -1 when the boundary is the grid's own outside. {-1, -1} for any other.
+  std::pair<int, int> boxSideOf(const Polygon& tri) const {
+    const dvec3 n = glm::normalize(glm::cross(tri[1] - tri[0], tri[2] - tri[0]));
+    for (int a = 0; a < 3; ++a) {
+      if (std::abs(n[a]) < cosAngle_) continue;
+      const auto& bounds = grid_.block.boundsM[static_cast<std::size_t>(a)];
+      const double at = (tri[0][a] + tri[1][a] + tri[2][a]) / 3.0 - grid_.originM[a];
+      const auto k = static_cast<int>(std::lower_bound(bounds.begin(), bounds.end(), at - tol_) - bounds.begin());
+      if (k >= static_cast<int>(bounds.size())) return {-1, -1};
+      for (const dvec3& q : tri)
+        if (std::abs(q[a] - grid_.originM[a] - bounds[static_cast<std::size_t>(k)]) > tol_) return {-1, -1};
+      // The normal points out of the solid: the cell behind a +a face ends at the boundary.
+      const int layer = n[a] > 0 ? k - 1 : (k < grid_.block.cellCount(a) ? k : -1);
+      return {2 * a + (n[a] > 0 ? 1 : 0), layer};
+    }
+    return {-1, -1};
+  }
+
   // Every triangle's parts in the cells its bounding box meets.
   bool collectCrossings(const std::vector<double>& areas) {
     const TriangleMesh& m = grid_.complement;
@@ -189,8 +210,16 @@ class Fitter {
     std::size_t total = 0;
     for (std::uint32_t t = 0; t < m.triangles.size(); ++t) {
       if (areas[t] <= 0) continue;
-      const Polygon tri = polygonOf(t);
+      Polygon tri = polygonOf(t);
       std::array<int, 3> first{}, last{};
+      const auto [side, layer] = boxSideOf(tri);
+      if (side >= 0 && layer < 0) continue;  // on the grid's outside: no cell behind it
+      if (side >= 0) {
+        // Laid onto the boundary it lies within the tolerance of, so that clipping keeps it.
+        const int a = side / 2;
+        const double at = grid_.originM[a] + b.boundsM[static_cast<std::size_t>(a)][static_cast<std::size_t>(layer + side % 2)];
+        for (dvec3& q : tri) q[a] = at;
+      }
       for (int a = 0; a < 3; ++a) {
         const auto& bounds = b.boundsM[static_cast<std::size_t>(a)];
         const double lo = std::min({tri[0][a], tri[1][a], tri[2][a]}) - grid_.originM[a];
@@ -202,14 +231,16 @@ class Fitter {
         first[static_cast<std::size_t>(a)] = cellAt(lo);
         last[static_cast<std::size_t>(a)] = cellAt(hi);
       }
+      if (side >= 0) first[static_cast<std::size_t>(side / 2)] = last[static_cast<std::size_t>(side / 2)] = layer;
       for (int z = first[2]; z <= last[2]; ++z)
         for (int y = first[1]; y <= last[1]; ++y)
           for (int x = first[0]; x <= last[0]; ++x) {
             if (++total > kMaxCrossings) return false;
             const std::size_t cell = b.cellIndex(x, y, z);
-            // A triangle that only touches the cell (within rounding, along an edge) does not cross it.
-            const double part = area(clipToBox(tri, boxOf(cell)));
-            if (part > tol_ * tol_) crossings_[cell].push_back({t, part});
+            // A narrow part's area is below half the tolerance times its perimeter.
+            const Polygon piece = clipToBox(tri, boxOf(cell));
+            const double part = area(piece);
+            if (part > 0) crossings_[cell].push_back({t, part, side, part <= 0.5 * tol_ * perimeter(piece)});
           }
     }
     return true;
@@ -242,8 +273,7 @@ class Fitter {
     for (int k = 0; k < cut.planeCount(); ++k) {
       double outline = 0;
       const double surface = cutSurface(box, cut, world, k, outline);
-      if (surface <= tol_ * outline || std::abs(surface - faceArea[static_cast<std::size_t>(k)]) > tol_ * outline)
-        return false;
+      if (std::abs(surface - faceArea[static_cast<std::size_t>(k)]) > tol_ * outline) return false;
     }
     int samples = 0;
     for (const double fx : kSampleAt)
@@ -262,54 +292,122 @@ class Fitter {
     return samples >= kMinSamples;
   }
 
+  // The area of side `side` of the box that lies inside the cut, and the side's perimeter.
+  double sideInside(const Box& box, const std::array<Plane, 2>& world, PlaneCombine combine, int side,
+                    double& outline) const {
+    const int a = side / 2, u = (a + 1) % 3, v = (a + 2) % 3;
+    dvec3 q = box.lo;
+    q[a] = side % 2 ? box.hi[a] : box.lo[a];
+    Polygon rect(4, q);
+    rect[1][u] = rect[2][u] = box.hi[u];
+    rect[2][v] = rect[3][v] = box.hi[v];
+    outline = perimeter(rect);
+    const auto inside = [&](std::initializer_list<int> planes) {
+      Polygon p = rect;
+      for (const int k : planes)
+        if (p.size() >= 3)
+          p = clip(p, world[static_cast<std::size_t>(k)].normal, world[static_cast<std::size_t>(k)].offset, true);
+      return p.size() >= 3 ? area(p) : 0.0;
+    };
+    switch (combine) {
+      case PlaneCombine::One: return inside({0});
+      case PlaneCombine::Both: return inside({0, 1});
+      case PlaneCombine::Either: return inside({0}) + inside({1}) - inside({0, 1});
+    }
+    return 0.0;
+  }
+
+  // Plane indices (-1: none), combination and surface materials (kCellMaterial: the cell's): equal
+  // keys are one cut of the block.
+  static constexpr int kCellMaterial = -1;
+  using CutKey = std::tuple<int, int, PlaneCombine, int, int>;
+
   // A cell's plane cut, the planes it uses and its material.
   struct Fit {
     PlaneCut cut;
-    std::tuple<int, int, PlaneCombine> key;  // plane indices (-1: none) and combination
-    std::uint16_t material;
+    CutKey key;
+    std::uint16_t material = 0;
+    bool keepsCell = false;  // a box whose sides show the faces: nothing changes
   };
 
   std::optional<Fit> fitCell(std::size_t cell, const std::vector<Crossing>& crossings,
                              const std::vector<int>& planeOf) const {
-    // Empty cells (what the occupancy makes of a cell a face cuts), and boxes of the faces'
-    // material: a plane cell shows one material on its cut and on its box's faces alike.
+    const std::vector<std::uint16_t>& materialOf = grid_.complement.triangleMaterial;
+    std::optional<std::uint16_t> boxMaterial;
+    std::array<std::optional<std::uint16_t>, 2> planeMaterial;
+    const auto agrees = [](std::optional<std::uint16_t>& shared, std::uint16_t m) {
+      if (!shared) shared = m;
+      return *shared == m;
+    };
+    // Empty cells (what the occupancy makes of most cells a face cuts) and boxes, which keep
+    // their material on the box's sides.
     const Cell& c = grid_.block.cells[cell];
-    const std::uint16_t material = grid_.complement.triangleMaterial[crossings.front().triangle];
-    if (c.kind != CellKind::Empty && !(c.kind == CellKind::Solid && c.solid.index == 0 && c.material == material))
+    if (c.kind == CellKind::Solid && c.solid.index == 0)
+      boxMaterial = c.material;
+    else if (c.kind != CellKind::Empty)
       return std::nullopt;
     std::vector<int> ids;
     std::array<double, 2> faceArea{0, 0};
+    std::array<double, 6> sideArea{};
     for (const Crossing& x : crossings) {
-      if (grid_.complement.triangleMaterial[x.triangle] != material) return std::nullopt;
+      if (x.narrow) continue;
+      if (x.side >= 0) {
+        if (!agrees(boxMaterial, materialOf[x.triangle])) return std::nullopt;
+        sideArea[static_cast<std::size_t>(x.side)] += x.area;
+        continue;
+      }
       const int id = planeOf[x.triangle];
       auto it = std::find(ids.begin(), ids.end(), id);
       if (it == ids.end()) {
         if (ids.size() == 2) return std::nullopt;
         it = ids.insert(ids.end(), id);
       }
-      faceArea[static_cast<std::size_t>(it - ids.begin())] += x.area;
+      const auto k = static_cast<std::size_t>(it - ids.begin());
+      if (!agrees(planeMaterial[k], materialOf[x.triangle])) return std::nullopt;
+      faceArea[k] += x.area;
     }
+    // A box whose sides show all the faces crossing it (faces the grid gave the mesh whole, as
+    // they reach beyond it) stays as it is; they may leave the mesh if their other cells fit.
+    if (ids.empty()) return c.kind == CellKind::Solid ? std::optional<Fit>(Fit{.keepsCell = true}) : std::nullopt;
+    // The box's sides show the cell's material (the first plane's when no face lies on them), each
+    // plane its own where that differs (a roof over walls).
+    const std::uint16_t material = boxMaterial.value_or(*planeMaterial[0]);
+    std::array<std::optional<std::uint16_t>, 2> surfaceMaterials;
+    for (std::size_t k = 0; k < ids.size(); ++k)
+      if (*planeMaterial[k] != material) surfaceMaterials[k] = planeMaterial[k];
     std::array<Plane, 2> world{planes_[static_cast<std::size_t>(ids[0])],
                                planes_[static_cast<std::size_t>(ids.size() > 1 ? ids[1] : ids[0])]};
     const Box box = boxOf(cell);
     for (const PlaneCombine combine : ids.size() == 1
                                           ? std::vector<PlaneCombine>{PlaneCombine::One}
                                           : std::vector<PlaneCombine>{PlaneCombine::Both, PlaneCombine::Either}) {
+      // The faces on the box's sides lie where the cut leaves the side solid.
+      bool sidesFit = true;
+      for (int side = 0; side < 6 && sidesFit; ++side) {
+        double outline = 0;
+        const double inside = sideInside(box, world, combine, side, outline);
+        sidesFit = sideArea[static_cast<std::size_t>(side)] <= inside + tol_ * outline;
+      }
+      if (!sidesFit) continue;
       PlaneCut cut;
       cut.combine = combine;
+      cut.surfaceMaterials = surfaceMaterials;
       for (std::size_t k = 0; k < 2; ++k)
         cut.planes[k] = k < ids.size()
                             ? CutPlane{world[k].normal, world[k].offset - glm::dot(world[k].normal, grid_.originM)}
                             : CutPlane{};
       if (cutFits(box, cut, world, faceArea))
-        return Fit{cut, std::make_tuple(ids[0], ids.size() > 1 ? ids[1] : -1, combine), material};
+        return Fit{cut,
+                   {ids[0], ids.size() > 1 ? ids[1] : -1, combine, surfaceMaterials[0].value_or(kCellMaterial),
+                    surfaceMaterials[1].value_or(kCellMaterial)},
+                   material};
     }
     return std::nullopt;
   }
 
   // The complementary mesh without the triangles that left it for plane cells. A triangle that
   // crosses no cell (its parts are all below the tolerance squared) stays.
-  void removeLeaving(const std::vector<bool>& leaves, const std::vector<double>& areas) {
+  void removeLeaving(const std::vector<bool>& leaves) {
     std::vector<bool> crosses(leaves.size(), false);
     for (const auto& [cell, crossings] : crossings_)
       for (const Crossing& x : crossings) crosses[x.triangle] = true;
@@ -317,7 +415,6 @@ class Fitter {
     std::size_t kept = 0;
     for (std::size_t t = 0; t < m.triangles.size(); ++t) {
       if (leaves[t] && crosses[t]) {
-        stats_.areaM2 += areas[t];
         continue;
       }
       m.triangles[kept] = m.triangles[t];
@@ -333,7 +430,7 @@ class Fitter {
   double tol_, cosAngle_;
   std::vector<Plane> planes_;
   std::map<std::size_t, std::vector<Crossing>> crossings_;  // per cell index, in index order
-  std::map<std::tuple<int, int, PlaneCombine>, std::uint32_t> cutIndex_;
+  std::map<CutKey, std::uint32_t> cutIndex_;
   PlaneFitStats stats_;
 };
 

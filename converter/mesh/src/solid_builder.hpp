@@ -366,9 +366,11 @@ struct Builder {
   // (solid_occupancy.cpp); `lost`: computeShares's pieces of axis-aligned faces that went to the
   // mesh because a trimmed cell beside them was emptied.
   std::array<std::vector<double>, 3> proposeTrimSplits(const std::vector<Share>& lost, const LazyWinding& winding) const;
+  // Boundaries at the corners of the planes of the faces the mesh shows (plane_corners.cpp).
+  std::array<std::vector<double>, 3> proposePlaneCorners() const;
   std::array<std::vector<double>, 3> materialConflicts(const std::vector<Share>& shares, double& conflictArea) const;
   void assignMaterials(Block& block, std::vector<Block>& subBlocks, const std::vector<Share>& shares);
-  std::array<std::vector<double>, 3> extraBounds;  // from material conflicts and trimmed cells
+  std::array<std::vector<double>, 3> extraBounds;  // from material conflicts, trimmed cells and plane corners
   struct MaterialLine {
     double at;      // the coordinate along the axis it is a line of constant value of
     double length;  // shared by the two materials

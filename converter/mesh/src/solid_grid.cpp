@@ -779,6 +779,9 @@ Result<SolidGrid> buildSolidGrid(const TriangleMesh& mesh, const SolidOptions& a
       // their own, and so on down a roof.
       if (builder.stats.trimBoundaries == 0)
         again = addBoundaries(builder, builder.proposeTrimSplits(lost, winding), builder.stats.trimBoundaries) || again;
+      // Plane corners are taken once too: the next build's mesh has the same planes.
+      if (options.planeCells && options.closedSurface && builder.stats.planeBoundaries == 0)
+        again = addBoundaries(builder, builder.proposePlaneCorners(), builder.stats.planeBoundaries) || again;
     }
     builder.stats.materialsSeconds += lap();
     if (!again) break;

@@ -70,7 +70,8 @@ struct PlaneRecord {
   std::uint8_t texture = 0;
   std::uint8_t combine = 0;            // PlaneCombine: 1 one plane, 2 both, 3 either
   std::array<EncodedPlane, 2> planes{};  // planes[1] only when combine is 2 or 3
-  std::uint8_t reserved = 0;           // OR of the reserved bytes (A of each plane's first two pixels)
+  // Per plane, the material its surface shows as stored: 0 the record's, k material k - 1.
+  std::array<std::uint16_t, 2> surfaceMaterialCodes{};
   int planeCount() const { return nut::planeCount(static_cast<PlaneCombine>(combine)); }
 };
 
@@ -195,7 +196,7 @@ class HniView {
       const std::uint8_t* o = texel(at, first + 2);
       const std::uint32_t offset = readU24(o) | static_cast<std::uint32_t>(o[3]) << 24;
       r.planes[static_cast<std::size_t>(i)] = {readU24(x), readU24(y), static_cast<std::int32_t>(offset)};
-      r.reserved |= static_cast<std::uint8_t>(x[3] | y[3]);
+      r.surfaceMaterialCodes[static_cast<std::size_t>(i)] = static_cast<std::uint16_t>(x[3] | y[3] << 8);
     }
     return r;
   }

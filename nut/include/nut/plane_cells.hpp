@@ -38,6 +38,9 @@ inline int planeCount(PlaneCombine combine) { return combine == PlaneCombine::On
 struct PlaneCut {
   std::array<CutPlane, 2> planes{};
   PlaneCombine combine = PlaneCombine::One;
+  // The material the cut shows on plane i (a roof over walls of another); none: the cell's, which
+  // its box's sides show.
+  std::array<std::optional<std::uint16_t>, 2> surfaceMaterials{};
   int planeCount() const { return nut::planeCount(combine); }
   friend bool operator==(const PlaneCut&, const PlaneCut&) = default;
 };

@@ -108,7 +108,8 @@ class HniRayCaster {
     std::array<glm::vec3, 2> normals;  // unit, in the block's frame
     std::array<float, 2> offsets;      // units
     PlaneCombine combine;
-    std::uint16_t material;
+    std::uint16_t material;                      // the box's sides
+    std::array<std::uint16_t, 2> surfaceMaterials;  // each plane's surface
   };
 
   // One ray's traversal (raycast.cpp), with the lookup's boundaries.

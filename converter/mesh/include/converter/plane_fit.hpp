@@ -4,17 +4,20 @@
 // faces sloped along all three axes, walls at odd angles) are the complementary mesh. A cell of
 // the grid becomes a plane cell (nut/plane_cells.hpp) when
 //   - the complementary faces crossing it lie on one or two planes (normals within the angle
-//     tolerance, points within the tolerance) and share one material,
+//     tolerance, points within the tolerance; plane_clusters.hpp), one material per plane,
 //   - on each plane they cover the cut's surface in the cell (the area of the faces' parts in the
 //     cell is that surface's, within the tolerance along its outline): no face ends inside it,
+//   - axis-aligned faces lying on the cell's sides (within the tolerance) lie where the cut leaves
+//     the side solid, all in one material, which the box's sides then show,
 //   - the mesh's winding number agrees with the cut at sample points of the cell (3 x 3 x 3, each
 //     farther than twice the tolerance from the planes), for one plane, or for two combined as a
 //     ridge (inside both) or as a valley (inside either).
-// The faces' parts in such cells leave the complementary mesh, which keeps the rest of each face
-// as convex pieces. Only empty cells (what the occupancy makes of most cells a face cuts) and boxes
-// of the faces' material become plane cells: a plane cell shows one material on its cut and on its
-// box's faces alike. A triangle whose part in a cell is less than the tolerance squared (it only
-// touches the cell) does not count there.
+// The cell's material is its box's sides'; a plane whose faces have another shows it as the cut's
+// surface material. Only empty cells and boxes become plane cells; a box all of whose faces lie on
+// its sides stays as it is. A face leaves the mesh only whole, when every cell it crosses fits
+// with every other face there; a part narrower than the tolerance (area at most half the
+// tolerance times its perimeter) neither needs its cell to fit nor stops it, unless all of its
+// face is that narrow.
 #pragma once
 
 #include <nut/triangle_mesh.hpp>
@@ -28,6 +31,7 @@ struct PlaneFitStats {
   long long planeCells = 0;      // of those, made plane cells
   long long twoPlaneCells = 0;   // of those, with two planes (a ridge, hip or valley)
   double areaM2 = 0;             // surface moved from the complementary mesh to plane cells
+  double drawnTwiceM2 = 0;       // surface of faces that left the mesh where boxes showed them already
 };
 
 // Fits plane cells to `grid` (its block and complementary mesh change). `inside` is the surface

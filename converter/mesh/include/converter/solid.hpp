@@ -40,7 +40,9 @@
 //    are inside all over, so they never poke through the mesh. Where such a cell is solid all
 //    over on one side of what cuts it (a house under a roof left to the mesh, with no face ending
 //    at the eaves), the grid is built once more with a boundary there, when the faces it wins
-//    back from the mesh are worth it (2 % of the surface).
+//    back from the mesh are worth it (2 % of the surface). With plane cells (planeCells), on a
+//    closed surface, the corners of the planes the mesh's faces lie on become boundaries too
+//    (plane_corners.cpp), so that plane_fit.hpp finds cells crossed by one or two of them.
 // 4. Materials. Each axis-aligned face is clipped against the cell faces it covers; where exactly
 //    one side is solid, that cell gains the face's area for the face's material and the cell takes
 //    the material of largest area. Uncovered parts of faces (thin sheets, details below the
@@ -66,8 +68,8 @@ struct SolidOptions {
   bool wedges = true;               // fit wedge cells to faces sloped along one axis
   bool quadrics = true;             // fit quarter-cylinder and sphere-octant cells to curved pieces
   bool pyramids = true;             // fit pyramid cells to corner slopes (chamfered corners)
-  // Make plane cells (HNI version 3) of the cells the complementary mesh crosses on one or two
-  // planes, and take those faces' parts out of it (plane_fit.hpp).
+  // Build the grid with boundaries at the corners of the complementary mesh's planes, for plane
+  // cells (HNI version 3; plane_fit.hpp fits them to the grid, convert.cpp keeps them when smaller).
   bool planeCells = false;
   // Keep a slope whose cells mostly became wedges, leaving its faces over the other cells to the
   // complementary mesh; false: only slopes that became wedges everywhere stay (a smaller grid).
@@ -110,6 +112,7 @@ struct SolidStats {
   long long planeCells = 0;           // plane cells fitted to the complementary mesh (plane_fit.hpp)
   long long twoPlaneCells = 0;        // of those, with two planes (a ridge, hip or valley)
   long long trimmedCells = 0;         // cut by the complementary mesh and not inside all over: empty
+  long long planeBoundaries = 0;      // boundaries added at the corners of planes the mesh shows (plane cells)
   long long trimBoundaries = 0;       // boundaries added to keep the solid part of such cells (under a roof left to the mesh)
   int gridBuilds = 0;                 // grids built: again for boundaries added, or without a slope given up
   int gridsClassified = 0;            // of those, the ones whose occupancy was computed (the rest gave up
