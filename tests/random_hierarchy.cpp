@@ -69,8 +69,8 @@ Hierarchy randomHierarchy(std::uint64_t seed, const RandomHierarchyOptions& o) {
       const int cuts = uniformInt(1, 4);
       for (int k = 0; k < cuts; ++k) {
         PlaneCut cut{{randomPlane(), randomPlane()}, static_cast<PlaneCombine>(uniformInt(1, 3)), {}};
-        // Some planes show a material of their own, drawn apart so that the geometry of each seed
-        // stays what it was before surface materials.
+        // Some planes show a material of their own, drawn from a stream of their own so that a
+        // seed's geometry does not depend on them.
         for (auto& surface : cut.surfaceMaterials)
           if (std::uniform_int_distribution<int>(0, 1)(surfaceRng) == 1)
             surface = static_cast<std::uint16_t>(std::uniform_int_distribution<int>(0, materials - 1)(surfaceRng));

@@ -13,15 +13,26 @@ namespace {
 
 constexpr int kSides = 6;
 
-// Share of a side hit by parallel rays through a 24 x 24 grid of sample points: `hit(fu, fv)`
-// traces the ray at fractions (fu, fv) of the side's two axes.
+// Shares of a side whose parallel rays, through a 24 x 24 grid of sample points, meet each of N
+// surfaces first: `surface(fu, fv)` traces the ray at fractions (fu, fv) of the side's two axes and
+// returns the surface's index, or -1 for a miss.
+template <std::size_t N, typename Surface>
+std::array<double, N> sampledShares(const Surface& surface) {
+  constexpr int kSamples = 24;
+  std::array<int, N> counts{};
+  for (int i = 0; i < kSamples; ++i)
+    for (int j = 0; j < kSamples; ++j)
+      if (const int k = surface((i + 0.5) / kSamples, (j + 0.5) / kSamples); k >= 0)
+        ++counts[static_cast<std::size_t>(k)];
+  std::array<double, N> shares{};
+  for (std::size_t k = 0; k < N; ++k) shares[k] = static_cast<double>(counts[k]) / (kSamples * kSamples);
+  return shares;
+}
+
+// The share of a side hit at all (`hit(fu, fv)` as above, true for a hit).
 template <typename Hit>
 double sampledShare(const Hit& hit) {
-  constexpr int kSamples = 24;
-  int covered = 0;
-  for (int i = 0; i < kSamples; ++i)
-    for (int j = 0; j < kSamples; ++j) covered += hit((i + 0.5) / kSamples, (j + 0.5) / kSamples);
-  return static_cast<double>(covered) / (kSamples * kSamples);
+  return sampledShares<1>([&](double fu, double fv) { return hit(fu, fv) ? 0 : -1; })[0];
 }
 
 // Fraction of side `side` of the unit cube behind which the solid is visible, looking at the side
@@ -59,17 +70,14 @@ std::array<double, 3> planeCellCoverage(const PlaneCut& cut, const glm::dvec3& l
   const int u = (axis + 1) % 3, v = (axis + 2) % 3;
   glm::dvec3 dir(0.0);
   dir[axis] = side % 2 == 0 ? -1.0 : 1.0;
-  std::array<double, 3> shares{};
-  for (int surface = 0; surface < 3; ++surface)
-    shares[static_cast<std::size_t>(surface)] = sampledShare([&](double fu, double fv) {
-      glm::dvec3 origin(0.0);
-      origin[u] = lo[u] + fu * (hi[u] - lo[u]);
-      origin[v] = lo[v] + fv * (hi[v] - lo[v]);
-      origin[axis] = side % 2 == 0 ? hi[axis] : lo[axis];
-      const auto span = intersectPlaneCut(cut, origin, dir, 0.0, hi[axis] - lo[axis]);
-      return span && span->plane + 1 == surface;
-    });
-  return shares;
+  return sampledShares<3>([&](double fu, double fv) {
+    glm::dvec3 origin(0.0);
+    origin[u] = lo[u] + fu * (hi[u] - lo[u]);
+    origin[v] = lo[v] + fv * (hi[v] - lo[v]);
+    origin[axis] = side % 2 == 0 ? hi[axis] : lo[axis];
+    const auto span = intersectPlaneCut(cut, origin, dir, 0.0, hi[axis] - lo[axis]);
+    return span ? span->plane + 1 : -1;
+  });
 }
 
 // The side of a redirected block that faces the same way as `side` of the parent cell.

@@ -405,8 +405,8 @@ class Fitter {
     return std::nullopt;
   }
 
-  // The complementary mesh without the triangles that left it for plane cells. A triangle that
-  // crosses no cell (its parts are all below the tolerance squared) stays.
+  // The complementary mesh without the triangles that left it. A triangle that crosses no cell
+  // (it has no part of positive area in any) stays.
   void removeLeaving(const std::vector<bool>& leaves) {
     std::vector<bool> crosses(leaves.size(), false);
     for (const auto& [cell, crossings] : crossings_)
@@ -414,9 +414,7 @@ class Fitter {
     TriangleMesh& m = grid_.complement;
     std::size_t kept = 0;
     for (std::size_t t = 0; t < m.triangles.size(); ++t) {
-      if (leaves[t] && crosses[t]) {
-        continue;
-      }
+      if (leaves[t] && crosses[t]) continue;
       m.triangles[kept] = m.triangles[t];
       m.triangleMaterial[kept] = m.triangleMaterial[t];
       ++kept;
