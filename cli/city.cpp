@@ -2,14 +2,13 @@
 // converted samples (grammar/city.hpp): one HNI per building, or per district with --pack-atlases
 // (converter/district.hpp), each validated, and the city.json that places them.
 #include <algorithm>
-#include <atomic>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
 #include <functional>
 #include <map>
 #include <memory>
-#include <mutex>
+#include <numeric>
 #include <string>
 #include <string_view>
 #include <thread>
@@ -32,6 +31,7 @@
 #include <scene/obj.hpp>
 
 #include "commands.hpp"
+#include "parallel.hpp"
 #include "progress.hpp"
 
 namespace fs = std::filesystem;
@@ -55,9 +55,6 @@ constexpr std::array<const char*, 3> kConvertedSamples{"house", "residential", "
 // A converted sample is first shrunk, all axes alike, to fit a lot of this width and depth (the
 // grammars' buildings are at most 20 m wide and 12 m deep before the plan's own scaling).
 constexpr double kSampleFitWidthM = 20.0, kSampleFitDepthM = 12.0;
-// Districts of --pack-atlases: squares of this side on the ground, split in halves while a district
-// does not fit one HNI.
-constexpr double kDistrictM = 256.0;
 
 // Where the buildings come from: a building grammar, or a converted sample whose hierarchy each
 // building stretches to its planned size.
@@ -210,24 +207,6 @@ Result<std::vector<CitySource>> readSources(const CityCliOptions& o, ProgressBar
 #endif
 }
 
-// Runs work(i) for i in [0, count) on `workers` threads, `done` called after each under a lock.
-void forEachInParallel(std::size_t count, std::size_t workers, const std::function<void(std::size_t)>& work,
-                       const std::function<void()>& done) {
-  std::atomic<std::size_t> next{0};
-  std::mutex doneMutex;
-  const auto loop = [&] {
-    for (std::size_t i; (i = next++) < count;) {
-      work(i);
-      const std::lock_guard lock(doneMutex);
-      done();
-    }
-  };
-  std::vector<std::thread> threads;
-  for (std::size_t w = 1; w < workers; ++w) threads.emplace_back(loop);
-  loop();
-  for (std::thread& t : threads) t.join();
-}
-
 // What a district leaves for the manifest and the report.
 struct WrittenDistrict {
   Result<scene::CityBuilding> entry = Error{"not written"};
@@ -236,59 +215,47 @@ struct WrittenDistrict {
 
 // The buildings of one district compiled as one HNI (converter/district.hpp), or, when they do
 // not fit one, each half on its own.
-void packDistrict(const CityCliOptions& o, const scene::CityManifest& city, std::vector<std::size_t> members,
+void packDistrict(const CityCliOptions& o, const scene::CityManifest& city, const std::vector<std::size_t>& members,
                   const std::string& name, std::vector<WrittenDistrict>& out) {
-  WrittenDistrict d;
   std::vector<Hierarchy> hierarchies;
   std::vector<converter::PlacedHierarchy> placed;
   hierarchies.reserve(members.size());
+  const auto failed = [&](Error error) {
+    WrittenDistrict d;
+    d.entry = std::move(error);
+    out.push_back(std::move(d));
+  };
   for (std::size_t i : members) {
     const scene::CityBuilding& b = city.buildings[i];
     const std::string path = (fs::path(o.out) / b.hni).string();
     auto png = readPng(path);
     auto h = png ? decode(png->image) : Result<Hierarchy>(png.error());
-    if (!h) {
-      d.entry = Error{path + ": " + h.error().message};
-      out.push_back(std::move(d));
-      return;
-    }
+    if (!h) return failed(Error{path + ": " + h.error().message});
     hierarchies.push_back(std::move(*h));
     placed.push_back({&hierarchies.back(), b.positionM, b.yawDeg});
   }
-  auto district = converter::mergeDistrict(placed);
-  auto image = district ? compile(district->hierarchy) : Result<Image>(district.error());
-  if (!image && members.size() > 1) {
-    // Over one HNI's limits (its metadata region, most often): halve it, along the plan's order.
-    const std::vector<std::size_t> second(members.begin() + static_cast<std::ptrdiff_t>(members.size() / 2), members.end());
-    members.resize(members.size() / 2);
-    packDistrict(o, city, members, name + "a", out);
-    packDistrict(o, city, second, name + "b", out);
-    return;
-  }
-  if (image) {
-    if (Status s = validate(*image); !s) image = Error{"the compiled HNI does not validate: " + s.error().message};
-  }
-  if (!image) {
-    d.entry = Error{name + " (" + city.buildings[members.front()].name + "): " + image.error().message};
+  std::vector<std::size_t> all(members.size());
+  std::iota(all.begin(), all.end(), std::size_t{0});
+  auto parts = converter::compileDistrict(placed, all);
+  if (!parts) return failed(Error{name + " (" + city.buildings[members.front()].name + "): " + parts.error().message});
+  for (converter::CompiledDistrict& part : *parts) {
+    const std::string partName = name + part.suffix;
+    HniText text{partName, "nut city --pack-atlases", "m", part.district.originM};
+    const std::string path = (fs::path(o.out) / (partName + ".png")).string();
+    if (Status s = writeHni(path, part.image, text, o.pngEffort == "small" ? PngEffort::Small : PngEffort::Smallest);
+        !s)
+      return failed(s.error());
+    WrittenDistrict d;
+    std::error_code ec;
+    d.pngBytes = static_cast<std::size_t>(fs::file_size(path, ec));
+    d.buildingBlocks = part.district.buildingBlocks;
+    d.mergedBlocks = part.district.mergedBlocks;
+    d.entry = scene::CityBuilding{partName, partName + ".png", "", part.district.originM, 0.0, part.district.boundsM};
     out.push_back(std::move(d));
-    return;
   }
-  HniText text{name, "nut city --pack-atlases", "m", district->originM};
-  const std::string path = (fs::path(o.out) / (name + ".png")).string();
-  if (Status s = writeHni(path, *image, text, o.pngEffort == "small" ? PngEffort::Small : PngEffort::Smallest); !s) {
-    d.entry = s.error();
-    out.push_back(std::move(d));
-    return;
-  }
-  std::error_code ec;
-  d.pngBytes = static_cast<std::size_t>(fs::file_size(path, ec));
-  d.buildingBlocks = district->buildingBlocks;
-  d.mergedBlocks = district->mergedBlocks;
-  d.entry = scene::CityBuilding{name, name + ".png", "", district->originM, 0.0, district->boundsM};
-  out.push_back(std::move(d));
 }
 
-// Replaces the city's buildings by districts of them (--pack-atlases): squares of kDistrictM on
+// Replaces the city's buildings by districts of them (--pack-atlases): squares of kDistrictSideM on
 // the ground, by the centre of each building's box, each written as one HNI. The buildings' own
 // HNIs are removed once the manifest names the districts.
 struct PackedCity {
@@ -297,13 +264,10 @@ struct PackedCity {
 };
 Result<PackedCity> packDistricts(const CityCliOptions& o, const scene::CityManifest& city, std::size_t workers,
                                  ProgressBar& bar) {
-  std::map<std::pair<long long, long long>, std::vector<std::size_t>> tiles;
-  for (std::size_t i = 0; i < city.buildings.size(); ++i) {
-    const glm::dvec3 centre = city.buildings[i].boundsM->centre();
-    tiles[{std::llround(std::floor(centre.x / kDistrictM)), std::llround(std::floor(centre.z / kDistrictM))}].push_back(i);
-  }
-  std::vector<std::vector<std::size_t>> members;
-  for (auto& [tile, buildings] : tiles) members.push_back(std::move(buildings));
+  std::vector<WorldBox> boxes;
+  for (const scene::CityBuilding& b : city.buildings) boxes.push_back(*b.boundsM);
+  const std::vector<std::vector<std::size_t>> members =
+      converter::districtGroups(boxes, converter::kDistrictSideM, glm::dvec2(0.0));
   std::vector<std::vector<WrittenDistrict>> written(members.size());
   std::size_t finished = 0;
   forEachInParallel(

@@ -1,26 +1,28 @@
 // `nut convert IN.obj -o OUT.png`: converts an OBJ building into an HNI (converter/convert.hpp);
 // `-o FOLDER` converts each object of the file into its own HNI and writes a city manifest.
 #include <algorithm>
-#include <atomic>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <memory>
-#include <mutex>
 #include <set>
 #include <string>
 #include <thread>
 #include <vector>
 
+#include <glm/common.hpp>
+#include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 #include <nlohmann/json.hpp>
 
 #include <converter/convert.hpp>
+#include <converter/district.hpp>
 #include <nut/png_io.hpp>
 #include <nut/raycast.hpp>
 #include <scene/city.hpp>
 
 #include "commands.hpp"
+#include "parallel.hpp"
 #include "progress.hpp"
 
 namespace nut::cli {
@@ -34,7 +36,7 @@ struct ConvertCliOptions {
   double toleranceM = 0.01;
   double angleDeg = 1.0;
   bool zUp = false, quiet = false, noAutoBlocks = false, noWedges = false, noAlign = false, noAxisOrder = false,
-       noWings = false, planeCells = false;
+       noWings = false, planeCells = false, packAtlases = false;
   std::vector<std::string> blocks;
   int threads = 0;
   std::string pngEffort = "smallest";
@@ -57,6 +59,13 @@ CLI::Validator hniOrFolder() {
       "");
 }
 
+// Workers for `items` buildings or districts: --threads, or all cores.
+std::size_t workerCount(const ConvertCliOptions& o, std::size_t items) {
+  const unsigned cores = std::max(1u, std::thread::hardware_concurrency());
+  return std::max<std::size_t>(
+      1, std::min<std::size_t>(items, o.threads > 0 ? static_cast<std::size_t>(o.threads) : cores));
+}
+
 PngEffort effortOf(const ConvertCliOptions& o) {
   return o.pngEffort == "small" ? PngEffort::Small : PngEffort::Smallest;
 }
@@ -73,6 +82,7 @@ Result<WorldBox> parseBox(const std::string& text) {
   return b;
 }
 
+// The building's summary on stderr; `output` is the HNI written, "" when its district holds it.
 void printSummary(const converter::ConvertReport& r, const std::string& output) {
   const auto& s = r.solid;
   std::fprintf(stderr, "convert: %s: %s\n", r.name.c_str(), r.check.summary().c_str());
@@ -83,6 +93,10 @@ void printSummary(const converter::ConvertReport& r, const std::string& output) 
       r.name.c_str(), r.yawDeg, r.yawApplied ? "converted in that frame" : "not aligned", s.cells[0], s.cells[1],
       s.cells[2], s.solidCells, s.wedgeCells, s.planeCells, r.hni.blocks, s.areaM2 > 0 ? 100 * s.nutAreaM2 / s.areaM2 : 0.0,
       s.areaM2 > 0 ? 100 * s.complementAreaM2 / s.areaM2 : 0.0, r.complementTriangles);
+  if (output.empty()) {
+    std::fprintf(stderr, "convert: %s: converted in %.2f s\n", r.name.c_str(), r.seconds());
+    return;
+  }
   std::fprintf(stderr, "convert: wrote %s (%dx%d, %lld bytes raw, %ju bytes PNG) in %.2f s\n", output.c_str(),
                r.hni.width, r.hni.height, r.hni.bytesRaw, r.pngBytes, r.seconds());
 }
@@ -147,63 +161,161 @@ std::vector<std::string> fileStems(const std::vector<TriangleMesh>& objects) {
   return stems;
 }
 
-// What is kept of each building's conversion: what the manifest, the report and the summary need.
+// What is kept of each building's conversion: what the manifest, the report and the summary need,
+// and, with --pack-atlases, what its district needs, for the building is then not written alone.
 struct ConvertedBuilding {
   std::string name, hni, complement, error;
   int exitCode = kOk;
   glm::dvec3 originM{0.0};
   WorldBox boundsM;  // the placed root block's, for the manifest
   converter::ConvertReport report;
+  Hierarchy hierarchy;          // with --pack-atlases
+  TriangleMesh complementMesh;  // with --pack-atlases
 };
 
-// Converts and writes each object into the folder, side by side, one per worker, each on one
-// thread (most of a small building's conversion keeps one core busy); the results come in the
-// objects' order whatever the timing.
+// Converts each object, side by side, one per worker, each on one thread (most of a small
+// building's conversion keeps one core busy), and writes it into the folder unless its district
+// will hold it; the results come in the objects' order whatever the timing.
 std::vector<ConvertedBuilding> convertSideBySide(const ConvertCliOptions& o, std::vector<TriangleMesh>& objects,
                                                  converter::ConvertOptions perBuilding, ProgressBar& bar) {
   const std::size_t count = objects.size();
   const std::vector<std::string> stems = fileStems(objects);
   std::vector<ConvertedBuilding> buildings(count);
   perBuilding.solid.threads = 1;
-  const unsigned cores = std::max(1u, std::thread::hardware_concurrency());
-  const std::size_t workers = std::min<std::size_t>(count, o.threads > 0 ? static_cast<std::size_t>(o.threads) : cores);
-  std::atomic<std::size_t> next{0}, finished{0};
-  std::mutex progressMutex;
-  const auto work = [&] {
-    for (std::size_t i; (i = next++) < count;) {
-      ConvertedBuilding& b = buildings[i];
-      b.name = objects[i].name;
-      auto conversion = converter::convertMesh(std::move(objects[i]), perBuilding);
-      if (!conversion) {
-        b.error = o.input + ": object '" + b.name + "': " + conversion.error().message;
-        b.exitCode = kInvalid;
-      } else {
-        const bool hasComplement = !conversion->complement.triangles.empty();
-        b.hni = stems[i] + ".png";
-        b.complement = hasComplement ? stems[i] + ".complement." + o.complementFormat : "";
-        if (Status s = converter::writeConversion(*conversion, (fs::path(o.output) / b.hni).string(),
-                                                  hasComplement ? (fs::path(o.output) / b.complement).string() : "",
-                                                  effortOf(o));
-            !s) {
-          b.error = s.error().message;
-          b.exitCode = kUnreadable;
-        }
-        b.originM = conversion->originM;
-        b.boundsM = HniRayCaster(conversion->image, conversion->originM).bounds();
-        b.report = std::move(conversion->report);
-      }
-      const std::lock_guard lock(progressMutex);
-      bar.update("buildings", static_cast<double>(++finished) / static_cast<double>(count));
+  std::size_t finished = 0;
+  const auto convertOne = [&](std::size_t i) {
+    ConvertedBuilding& b = buildings[i];
+    b.name = objects[i].name;
+    auto conversion = converter::convertMesh(std::move(objects[i]), perBuilding);
+    if (!conversion) {
+      b.error = o.input + ": object '" + b.name + "': " + conversion.error().message;
+      b.exitCode = kInvalid;
+      return;
     }
+    b.originM = conversion->originM;
+    b.boundsM = HniRayCaster(conversion->image, conversion->originM).bounds();
+    if (o.packAtlases) {
+      b.hierarchy = std::move(conversion->hierarchy);
+      b.complementMesh = std::move(conversion->complement);
+    } else {
+      const bool hasComplement = !conversion->complement.triangles.empty();
+      b.hni = stems[i] + ".png";
+      b.complement = hasComplement ? stems[i] + ".complement." + o.complementFormat : "";
+      if (Status s = converter::writeConversion(*conversion, (fs::path(o.output) / b.hni).string(),
+                                                hasComplement ? (fs::path(o.output) / b.complement).string() : "",
+                                                effortOf(o));
+          !s) {
+        b.error = s.error().message;
+        b.exitCode = kUnreadable;
+      }
+    }
+    b.report = std::move(conversion->report);
   };
-  std::vector<std::thread> threads;
-  for (std::size_t w = 1; w < workers; ++w) threads.emplace_back(work);
-  work();
-  for (std::thread& t : threads) t.join();
+  forEachInParallel(count, workerCount(o, count), convertOne, [&] { bar.updateCount("buildings", ++finished, count); });
   return buildings;
 }
 
-// One HNI per object, a complementary mesh beside each that has one, and city.json.
+// A district of --pack-atlases as written: its manifest entry and what the report says of it.
+struct WrittenDistrict {
+  scene::CityBuilding entry;
+  std::vector<std::size_t> members;
+  std::uintmax_t pngBytes = 0, complementBytes = 0;
+  std::size_t buildingBlocks = 0, mergedBlocks = 0;
+};
+
+// One group of districtGroups as one HNI (or halves, when it does not fit one) and one
+// complementary mesh: the members' meshes together, in world coordinates as they are.
+Status writeDistrict(const ConvertCliOptions& o, const std::vector<ConvertedBuilding>& buildings,
+                     const std::vector<converter::PlacedHierarchy>& placed, const std::vector<std::size_t>& group,
+                     const std::string& name, std::vector<WrittenDistrict>& out) {
+  auto parts = converter::compileDistrict(placed, group);
+  if (!parts)
+    return Error{o.input + ": district " + name + " (" + buildings[group.front()].name + "): " + parts.error().message};
+  for (converter::CompiledDistrict& part : *parts) {
+    WrittenDistrict d;
+    d.members = part.members;
+    const std::string stem = name + part.suffix;
+    d.entry = {stem, stem + ".png", "", part.district.originM, 0.0, part.district.boundsM};
+    const std::string png = (fs::path(o.output) / d.entry.hni).string();
+    if (Status s =
+            writeHni(png, part.image, {stem, "nut convert --pack-atlases", "m", part.district.originM}, effortOf(o));
+        !s)
+      return s;
+    std::vector<const TriangleMesh*> meshes;
+    for (std::size_t i : part.members)
+      if (!buildings[i].complementMesh.triangles.empty()) meshes.push_back(&buildings[i].complementMesh);
+    if (!meshes.empty()) {
+      auto merged = mergeMeshes(meshes, stem);
+      if (!merged) return Error{o.input + ": district " + stem + ": " + merged.error().message};
+      d.entry.complement = stem + ".complement." + o.complementFormat;
+      const std::string mesh = (fs::path(o.output) / d.entry.complement).string();
+      if (Status s = converter::writeComplement(mesh, *merged); !s) return s;
+      std::error_code ec;
+      d.complementBytes = fs::file_size(mesh, ec);
+    }
+    std::error_code ec;
+    d.pngBytes = fs::file_size(png, ec);
+    d.buildingBlocks = part.district.buildingBlocks;
+    d.mergedBlocks = part.district.mergedBlocks;
+    out.push_back(std::move(d));
+  }
+  return Ok{};
+}
+
+// --pack-atlases: the buildings in districts (converter/district.hpp), each written as one HNI and
+// one complementary mesh, in the order of districtGroups.
+Result<std::vector<WrittenDistrict>> writeDistricts(const ConvertCliOptions& o,
+                                                    const std::vector<ConvertedBuilding>& buildings, ProgressBar& bar) {
+  std::vector<converter::PlacedHierarchy> placed;
+  std::vector<WorldBox> boxes;
+  for (const ConvertedBuilding& b : buildings) {
+    // Yaw 0: a turned building carries its yaw inside its HNI, which is in the world frame.
+    placed.push_back({&b.hierarchy, b.originM, 0.0});
+    boxes.push_back(converter::placedRootBox(b.hierarchy, b.originM, 0.0));
+  }
+  // Squares from the file's minimum corner: a file of buildings smaller than a square is one
+  // district wherever it lies.
+  glm::dvec2 corner(INFINITY);
+  for (const WorldBox& box : boxes) corner = glm::min(corner, glm::dvec2(box.min.x, box.min.z));
+  const std::vector<std::vector<std::size_t>> groups =
+      converter::districtGroups(boxes, converter::kDistrictSideM, corner);
+  std::vector<std::vector<WrittenDistrict>> written(groups.size());
+  std::vector<Status> statuses(groups.size(), Ok{});
+  std::size_t finished = 0;
+  forEachInParallel(
+      groups.size(), workerCount(o, groups.size()),
+      [&](std::size_t i) {
+        char name[32];
+        std::snprintf(name, sizeof name, "d%04zu", i);
+        statuses[i] = writeDistrict(o, buildings, placed, groups[i], name, written[i]);
+      },
+      [&] { bar.updateCount("districts", ++finished, groups.size()); });
+  std::vector<WrittenDistrict> districts;
+  for (std::size_t i = 0; i < groups.size(); ++i) {
+    if (!statuses[i]) return statuses[i].error();
+    for (WrittenDistrict& d : written[i]) districts.push_back(std::move(d));
+  }
+  return districts;
+}
+
+nlohmann::json districtsJson(const std::vector<WrittenDistrict>& districts,
+                             const std::vector<ConvertedBuilding>& buildings) {
+  nlohmann::json out = nlohmann::json::array();
+  for (const WrittenDistrict& d : districts) {
+    nlohmann::json names = nlohmann::json::array();
+    for (std::size_t i : d.members) names.push_back(buildings[i].name);
+    out.push_back({{"name", d.entry.name},
+                   {"buildings", names},
+                   {"png_bytes", d.pngBytes},
+                   {"complement_bytes", d.complementBytes},
+                   {"building_blocks", d.buildingBlocks},
+                   {"merged_blocks", d.mergedBlocks}});
+  }
+  return out;
+}
+
+// One HNI per object, a complementary mesh beside each that has one, and city.json; with
+// --pack-atlases one HNI and one complementary mesh per district instead.
 int convertCity(const ConvertCliOptions& o, scene::ObjContents& obj, const converter::ConvertOptions& options) {
   if (!o.complement.empty())
     return fail(
@@ -216,21 +328,39 @@ int convertCity(const ConvertCliOptions& o, scene::ObjContents& obj, const conve
   city.name = fs::path(o.input).stem().string();
   ProgressBar bar(!o.quiet, "convert", city.name);
   const std::vector<ConvertedBuilding> buildings = convertSideBySide(o, obj.objects, options, bar);
-  bar.finish();
   nlohmann::json reports = nlohmann::json::array();
   for (const ConvertedBuilding& b : buildings) {
     if (b.exitCode != kOk) return fail(b.error, b.exitCode);
     // Yaw 0: a turned building carries its yaw inside its HNI, which is in the world frame.
-    city.buildings.push_back({b.name, b.hni, b.complement, b.originM, 0.0, b.boundsM});
+    if (!o.packAtlases) city.buildings.push_back({b.name, b.hni, b.complement, b.originM, 0.0, b.boundsM});
     reports.push_back(nlohmann::json::parse(converter::reportJson(b.report)));
-    if (!o.quiet) printSummary(b.report, (fs::path(o.output) / b.hni).string());
   }
+  nlohmann::json report{{"objects", reports}};
+  std::vector<WrittenDistrict> districts;
+  if (o.packAtlases) {
+    auto written = writeDistricts(o, buildings, bar);
+    if (!written) return fail(written.error().message, kUnreadable);
+    districts = std::move(*written);
+    for (const WrittenDistrict& d : districts) city.buildings.push_back(d.entry);
+    report["districts"] = districtsJson(districts, buildings);
+  }
+  bar.finish();
+  if (!o.quiet)
+    for (const ConvertedBuilding& b : buildings)
+      printSummary(b.report, o.packAtlases ? "" : (fs::path(o.output) / b.hni).string());
+  if (!o.quiet)
+    for (const WrittenDistrict& d : districts)
+      std::fprintf(stderr, "convert: wrote %s (%zu buildings, %ju bytes PNG) and %s (%ju bytes)\n",
+                   (fs::path(o.output) / d.entry.hni).c_str(), d.members.size(), d.pngBytes,
+                   d.entry.complement.empty() ? "no complementary mesh" : d.entry.complement.c_str(),
+                   d.complementBytes);
   const std::string manifest = (fs::path(o.output) / "city.json").string();
   if (Status s = scene::writeCityJson(manifest, city); !s) return fail(s.error().message, kUnreadable);
   if (!o.report.empty())
-    if (Status s = writeTextFile(o.report, nlohmann::json{{"objects", reports}}.dump(2) + "\n"); !s)
-      return fail(s.error().message, kUnreadable);
-  if (!o.quiet) std::fprintf(stderr, "convert: wrote %s (%zu buildings)\n", manifest.c_str(), city.buildings.size());
+    if (Status s = writeTextFile(o.report, report.dump(2) + "\n"); !s) return fail(s.error().message, kUnreadable);
+  if (!o.quiet)
+    std::fprintf(stderr, "convert: wrote %s (%zu %s)\n", manifest.c_str(), city.buildings.size(),
+                 o.packAtlases ? "districts" : "buildings");
   return kOk;
 }
 
@@ -302,6 +432,9 @@ void addConvertCommand(CLI::App& app, int& exitCode) {
   cmd->add_flag("--no-wings", o->noWings,
                 "Do not convert a wing turned against the rest of the building in a frame of its own (its walls then "
                 "go to the complementary mesh)");
+  cmd->add_flag("--pack-atlases", o->packAtlases,
+                "With -o FOLDER: write one HNI and one complementary mesh per district of 256 m instead of one per "
+                "building: the buildings' blocks merged, equal blocks stored once, fewer and smaller files");
   cmd->add_option("--block", o->blocks,
                   "Extract this box of cells as a block, x0,y0,z0:x1,y1,z1 in world metres (repeatable)");
   cmd->add_option(
@@ -315,7 +448,8 @@ void addConvertCommand(CLI::App& app, int& exitCode) {
   cmd->footer(
       "Examples:\n  nut convert samples/obj/carpark.obj -o carpark.png --complement carpark-rest.glb --report "
       "report.json\n"
-      "  nut convert samples/obj/street.obj -o street/        # one HNI per object + street/city.json\n\n" +
+      "  nut convert samples/obj/street.obj -o street/        # one HNI per object + street/city.json\n"
+      "  nut convert district.obj -o district/ --plane-cells --pack-atlases   # one HNI and GLB per 256 m\n\n" +
       std::string(kExitCodesHelp));
   cmd->callback([o, &exitCode] { exitCode = run(*o); });
 }

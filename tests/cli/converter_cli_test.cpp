@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -348,6 +349,103 @@ TEST(RenderCli, ACityManifestRendersLikeItsSourceOnBothBackends) {
   r = nut("render " + out("street-city") + "/town.json -o " + out("town-gl.png") + " --size 320x180 --backend gl");
   ASSERT_EQ(r.exitCode, 0) << r.stderrText;
   EXPECT_GE(withinPct(out("town-gl.png"), out("town-cpu.png")), 99.9);
+}
+
+// An OBJ object that is a closed box from lo to hi; its vertices are numbered from `first`.
+std::string boxObject(const std::string& name, const glm::dvec3& lo, const glm::dvec3& hi, int first) {
+  std::string text = "o " + name + "\n";
+  for (int corner = 0; corner < 8; ++corner) {
+    const glm::dvec3 p((corner & 1) ? hi.x : lo.x, (corner & 2) ? hi.y : lo.y, (corner & 4) ? hi.z : lo.z);
+    text += "v " + std::to_string(p.x) + " " + std::to_string(p.y) + " " + std::to_string(p.z) + "\n";
+  }
+  // Corners 0..7 as (x, y, z) bits; each face wound outwards.
+  for (const std::array<int, 4>& f :
+       {std::array<int, 4>{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4}, {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}})
+    text += "f " + std::to_string(first + f[0]) + " " + std::to_string(first + f[1]) + " " +
+            std::to_string(first + f[2]) + " " + std::to_string(first + f[3]) + "\n";
+  return text;
+}
+
+// Renders a city manifest and returns the percentage of pixels within 8/255 of `reference`.
+double cityWithinPct(const std::string& city, const std::string& png, const std::string& reference,
+                     const std::string& view) {
+  const CliRun r = nut("render " + city + " -o " + png + view);
+  EXPECT_EQ(r.exitCode, 0) << r.stderrText;
+  return withinPct(png, reference);
+}
+
+// --pack-atlases: the buildings of a converted file in district HNIs (docs/CITY.md, "Districts"),
+// one complementary mesh per district. Buildings whose boxes overlap on the ground go to separate
+// districts of the same square, boxes that touch share one; the report names each district's
+// buildings; the packed city renders like the city of single buildings and like the source, and
+// its files are fewer and smaller.
+TEST(ConvertCli, PackAtlasesWritesADistrictHniAndComplementAndRendersLikeTheSource) {
+  const std::string obj = out("overlap.obj");
+  std::ofstream(obj) << boxObject("a", {0, 0, 0}, {10, 6, 8}, 1) << boxObject("b", {5, 0, 4}, {15, 9, 12}, 9)
+                     << boxObject("c", {10, 0, 0}, {14, 4, 8}, 17);
+  fs::remove_all(out("overlap"));
+  CliRun r = nut("convert " + obj + " -o " + out("overlap") + " --quiet --pack-atlases --report " +
+                 out("overlap-report.json"));
+  ASSERT_EQ(r.exitCode, 0) << r.stderrText;
+  const nlohmann::json report = nlohmann::json::parse(::nut::testing::fileText(out("overlap-report.json")));
+  ASSERT_EQ(report.at("objects").size(), 3u);
+  ASSERT_EQ(report.at("districts").size(), 2u) << report.at("districts").dump();
+  EXPECT_EQ(report.at("districts")[0].at("buildings"), nlohmann::json({"a", "c"}));
+  EXPECT_EQ(report.at("districts")[1].at("buildings"), nlohmann::json({"b"}));
+  auto manifest = scene::readCityJson(out("overlap/city.json"));
+  ASSERT_TRUE(manifest) << manifest.error().message;
+  ASSERT_EQ(manifest->buildings.size(), 2u);
+  EXPECT_EQ(manifest->buildings[0].hni, "d0000.png");
+  EXPECT_EQ(manifest->buildings[1].hni, "d0001.png");
+  EXPECT_FALSE(fs::exists(out("overlap/a.png")));
+  const std::string boxesView = " --size 480x270 --eye 30,25,-20 --target 7,3,6";
+  r = nut("render-mesh " + obj + " -o " + out("overlap-source.png") + boxesView);
+  ASSERT_EQ(r.exitCode, 0) << r.stderrText;
+  EXPECT_GE(cityWithinPct(out("overlap/city.json"), out("overlap-packed.png"), out("overlap-source.png"), boxesView),
+            99.9);
+
+  // A generated LoD2 district with plane cells: its complementary meshes too become one.
+  const std::string district = std::string(NUT_SOURCE_DIR) + "/tests/data/lod2_district_seed1.obj";
+  const std::string single = out("lod2-single"), packed = out("lod2-packed");
+  for (const std::string& dir : {single, packed}) fs::remove_all(dir);
+  r = nut("convert " + district + " -o " + single + " --quiet --plane-cells");
+  ASSERT_EQ(r.exitCode, 0) << r.stderrText;
+  r = nut("convert " + district + " -o " + packed + " --quiet --plane-cells --pack-atlases --report " +
+          out("lod2-packed.json"));
+  ASSERT_EQ(r.exitCode, 0) << r.stderrText;
+  const auto folderBytes = [](const std::string& dir, std::size_t& files) {
+    std::uintmax_t bytes = 0;
+    files = 0;
+    for (const fs::directory_entry& e : fs::directory_iterator(dir))
+      if (e.path().filename() != "city.json") {
+        bytes += e.file_size();
+        ++files;
+      }
+    return bytes;
+  };
+  std::size_t singleFiles = 0, packedFiles = 0;
+  const std::uintmax_t singleBytes = folderBytes(single, singleFiles), packedBytes = folderBytes(packed, packedFiles);
+  std::printf("generated district, 30 buildings: %zu files, %ju B one per building; %zu files, %ju B packed\n",
+              singleFiles, singleBytes, packedFiles, packedBytes);
+  EXPECT_LE(packedFiles, 4u);
+  EXPECT_LT(packedBytes, singleBytes * 3 / 4);
+  const nlohmann::json lod2 = nlohmann::json::parse(::nut::testing::fileText(out("lod2-packed.json")));
+  std::size_t members = 0;
+  for (const nlohmann::json& d : lod2.at("districts")) {
+    members += d.at("buildings").size();
+    auto png = readPng(packed + "/" + d.at("name").get<std::string>() + ".png");
+    ASSERT_TRUE(png) << png.error().message;
+    EXPECT_TRUE(validate(png->image)) << d.at("name");
+  }
+  EXPECT_EQ(members, 30u);
+  const std::string view = " --size 640x360 --eye -30,70,-40 --target 60,5,60";
+  r = nut("render-mesh " + district + " -o " + out("lod2-source.png") + view);
+  ASSERT_EQ(r.exitCode, 0) << r.stderrText;
+  const double one = cityWithinPct(single + "/city.json", out("lod2-single.png"), out("lod2-source.png"), view);
+  const double both = cityWithinPct(packed + "/city.json", out("lod2-packed.png"), out("lod2-source.png"), view);
+  std::printf("within 8/255 of the source: one HNI per building %.3f %%, districts %.3f %%\n", one, both);
+  EXPECT_GE(both, 99.5);
+  EXPECT_GE(both, one - 0.1);
 }
 
 TEST(RenderCli, ABadManifestFailsNamingWhere) {

@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <numeric>
 #include <random>
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -13,6 +14,7 @@
 #include <converter/district.hpp>
 #include <converter/scale_hierarchy.hpp>
 #include <nut/hni.hpp>
+#include <nut/raycast.hpp>
 
 #include "random_hierarchy.hpp"
 #include "redirected_point.hpp"
@@ -172,6 +174,53 @@ TEST(District, EqualBlocksOfTwoBuildingsAreStoredOnce) {
   EXPECT_EQ(district->hierarchy.materials.size(), h.materials.size());
 }
 
+// Plane surfaces keep their materials in a district: rays at each building show the same colours
+// through the district's HNI as through the building's own (the second building's materials are
+// renumbered, its planes' surface materials with its cells'). Opaque materials and the exact
+// lookup: a translucent building that spans two root cells is tinted again where the ray crosses
+// between them, and the heuristic lookup moves the root's boundaries by up to D / (512 M).
+TEST(District, PlaneSurfacesKeepTheirMaterials) {
+  std::vector<Placement> buildings;
+  for (std::size_t i = 0; i < 2; ++i) {
+    testing::RandomHierarchyOptions options;
+    options.planeCellShare = 0.5;
+    options.maxCellM = 2.0;
+    Hierarchy h = quantized(testing::randomHierarchy(40 + i, options));
+    for (Material& m : h.materials) m.opacity = 255;
+    buildings.push_back({std::move(h), glm::dvec3(100.0 * static_cast<double>(i), 0.0, 0.0), 0.0});
+  }
+  auto parts = compileDistrict(placed(buildings), {0, 1});
+  ASSERT_TRUE(parts) << parts.error().message;
+  ASSERT_EQ(parts->size(), 1u);
+  const HniRayCaster district(parts->front().image, parts->front().district.originM);
+  RayCastOptions exact;
+  exact.lookup = Lookup::Exact;
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  int hits = 0, differing = 0, planeSurfaces = 0;
+  for (const Placement& b : buildings) {
+    for (const Block& block : b.hierarchy.blocks)
+      for (const PlaneCut& cut : block.cuts)
+        planeSurfaces += cut.surfaceMaterials[0].has_value() + cut.surfaceMaterials[1].has_value();
+    auto image = compile(b.hierarchy);
+    ASSERT_TRUE(image) << image.error().message;
+    const HniRayCaster alone(*image, b.positionM);
+    const WorldBox box = alone.bounds();
+    const double radius = glm::length(box.size());
+    for (int n = 0; n < 4000; ++n) {
+      const glm::dvec3 target = box.min + glm::dvec3(unit(rng), unit(rng), unit(rng)) * box.size();
+      const glm::dvec3 from = box.centre() + radius * glm::normalize(glm::dvec3(unit(rng), unit(rng), unit(rng)) - 0.5);
+      const glm::dvec3 direction = glm::normalize(target - from);
+      const RayResult a = alone.trace(from, direction, 0.0, exact), d = district.trace(from, direction, 0.0, exact);
+      hits += a.hit;
+      differing += a.hit != d.hit || a.colour != d.colour;
+    }
+  }
+  EXPECT_GT(planeSurfaces, 10);
+  EXPECT_GT(hits, 2000);
+  EXPECT_LE(differing, 8) << "of " << hits << " hits";  // a ray along an edge, a millimetre apart
+}
+
 TEST(District, RefusesOverlappingBuildingsAndNamesThem) {
   const Hierarchy h = quantized(testing::randomHierarchy(7));
   std::vector<Placement> buildings{{h, glm::dvec3(0.0), 0.0}, {h, glm::dvec3(500.0, 0.0, 0.0), 0.0}, {h, glm::dvec3(0.001, 5.0, 0.0), 0.0}};
@@ -179,6 +228,83 @@ TEST(District, RefusesOverlappingBuildingsAndNamesThem) {
   ASSERT_FALSE(district);
   EXPECT_EQ(district.error().message, "building 2 overlaps building 0 on the ground");
   EXPECT_FALSE(mergeDistrict({}));
+}
+
+// Squares of the side from a corner, by the centre of each box; within a square a box overlapping a member of a
+// group joins the next group, and boxes that only touch share one (their millimetres meet).
+TEST(DistrictGroups, SquaresByCentreAndNoTwoOverlappingBoxesInOneGroup) {
+  const auto box = [](double x0, double z0, double x1, double z1) {
+    return WorldBox{glm::dvec3(x0, 0.0, z0), glm::dvec3(x1, 10.0, z1)};
+  };
+  const std::vector<WorldBox> boxes{
+      box(0, 0, 10, 10),        // 0: square (0, 0)
+      box(10, 0, 14, 10),       // 1: touches 0
+      box(5, 5, 15, 15),        // 2: overlaps 0 and 1
+      box(300, 0, 310, 10),     // 3: square (1, 0)
+      box(250, 0, 270, 10),     // 4: centre at 260: square (1, 0), though it starts in (0, 0)
+      box(13.9996, 0, 20, 4),   // 5: starts 0.4 mm inside 1: the same millimetre once rounded
+      box(12, 6, 13, 7),        // 6: inside 1 and 2
+      box(-20, -20, -10, -10),  // 7: square (-1, -1), first in (x, z) order
+  };
+  const std::vector<std::vector<std::size_t>> groups = districtGroups(boxes, 256.0, glm::dvec2(0.0));
+  const std::vector<std::vector<std::size_t>> expected{{7}, {0, 1, 5}, {2}, {6}, {3, 4}};
+  EXPECT_EQ(groups, expected);
+  // Squares from (-20, -20): 7 joins the square of 0, and 4 stays with 3 (its centre 280 m from the corner).
+  const std::vector<std::vector<std::size_t>> shifted{{0, 1, 5, 7}, {2}, {6}, {3, 4}};
+  EXPECT_EQ(districtGroups(boxes, 256.0, glm::dvec2(-20.0)), shifted);
+}
+
+// A building of 250 blocks of its own: a row of 1 m cells, each redirecting to a 1 m cube split at
+// its own millimetre along x and at the building's along z, so that each block costs the HNI a
+// header and no two buildings share one.
+Hierarchy rowOfDistinctBlocks(int building) {
+  constexpr int kCount = 250;  // under the 256 cells an axis indexes
+  Hierarchy h;
+  h.materials = {Material{}, Material{90, 60, 30}};
+  Block root;
+  for (int x = 0; x <= kCount; ++x) root.boundsM[0].push_back(x);
+  root.boundsM[1] = {0.0, 1.0};
+  root.boundsM[2] = {0.0, 1.0};
+  for (int x = 0; x < kCount; ++x) {
+    Block child;
+    child.boundsM = {std::vector<double>{0.0, 0.001 * (x + 1), 1.0}, {0.0, 1.0}, {0.0, 0.001 * (building + 1), 1.0}};
+    child.cells = {Cell::box(0), Cell::box(1), Cell::box(1), Cell::box(0)};
+    root.cells.push_back(Cell::redirect(static_cast<std::uint32_t>(root.redirections.size())));
+    root.redirections.push_back(
+        Redirection{h.addBlock(std::move(child)), glm::dvec3(0.0), Rotation{}, {false, false, false}});
+  }
+  h.root = h.addBlock(std::move(root));
+  return h;
+}
+
+// A district whose buildings do not fit one HNI is halved along their order until each part
+// does; the parts together hold every building once, each compiles to an HNI that validates, and
+// the suffixes name the halves.
+TEST(DistrictGroups, ADistrictTooLargeForOneHniIsHalved) {
+  constexpr std::size_t kBuildings = 24;
+  std::vector<Placement> buildings;
+  for (std::size_t i = 0; i < kBuildings; ++i)
+    buildings.push_back(
+        {rowOfDistinctBlocks(static_cast<int>(i)), glm::dvec3(0.0, 0.0, 2.0 * static_cast<double>(i)), 0.0});
+  auto one = compileDistrict(placed(buildings), {0});
+  ASSERT_TRUE(one) << one.error().message;
+  ASSERT_EQ(one->size(), 1u);
+  EXPECT_EQ(one->front().suffix, "");
+  EXPECT_TRUE(validate(one->front().image));
+
+  std::vector<std::size_t> all(kBuildings);
+  std::iota(all.begin(), all.end(), std::size_t{0});
+  auto parts = compileDistrict(placed(buildings), all);
+  ASSERT_TRUE(parts) << parts.error().message;
+  ASSERT_GT(parts->size(), 1u);
+  std::vector<std::size_t> members;
+  for (const CompiledDistrict& part : *parts) {
+    EXPECT_TRUE(validate(part.image)) << part.suffix;
+    members.insert(members.end(), part.members.begin(), part.members.end());
+  }
+  EXPECT_EQ(members, all);
+  EXPECT_EQ(parts->front().suffix.front(), 'a');
+  EXPECT_EQ(parts->back().suffix.front(), 'b');
 }
 
 }  // namespace

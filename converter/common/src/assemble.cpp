@@ -173,19 +173,22 @@ void compactMaterials(Hierarchy& h) {
         if (m) remap[*m] = 0;
   }
   std::vector<Material> kept;
+  std::vector<std::uint16_t> to(remap.size(), 0);
   for (std::size_t m = 0; m < remap.size(); ++m)
     if (remap[m] == 0) {
-      remap[m] = static_cast<int>(kept.size());
+      to[m] = static_cast<std::uint16_t>(kept.size());
       kept.push_back(h.materials[m]);
     }
-  for (Block& b : h.blocks) {
-    for (Cell& c : b.cells)
-      if (c.hasMaterial()) c.material = static_cast<std::uint16_t>(remap[c.material]);
-    for (PlaneCut& cut : b.cuts)
-      for (auto& m : cut.surfaceMaterials)
-        if (m) m = static_cast<std::uint16_t>(remap[*m]);
-  }
+  for (Block& b : h.blocks) renumberMaterials(b, to);
   h.materials = std::move(kept);
+}
+
+void renumberMaterials(Block& b, const std::vector<std::uint16_t>& to) {
+  for (Cell& c : b.cells)
+    if (c.hasMaterial()) c.material = to[c.material];
+  for (PlaneCut& cut : b.cuts)
+    for (auto& m : cut.surfaceMaterials)
+      if (m) m = to[*m];
 }
 
 }  // namespace nut::converter

@@ -8,6 +8,8 @@
 #include <cmath>
 #include <cstdint>
 #include <functional>
+#include <map>
+#include <numeric>
 #include <optional>
 #include <string>
 #include <unordered_map>
@@ -15,6 +17,7 @@
 #include <glm/mat3x3.hpp>
 
 #include <nut/format.hpp>
+#include <nut/hni.hpp>
 #include <nut/units.hpp>
 
 namespace nut::converter {
@@ -87,11 +90,9 @@ class BlockMerger {
     if (added_[id]) return *added_[id];
     Block b = h.blocks[id];
     for (Redirection& r : b.redirections) r.target = add(h, r.target);
-    for (Cell& c : b.cells) {
-      if (!c.hasMaterial()) continue;
-      c.material = materials_[c.material];
-      if (c.texture != 0) c.texture = textures_[c.texture - 1u];
-    }
+    renumberMaterials(b, materials_);
+    for (Cell& c : b.cells)
+      if (c.hasMaterial() && c.texture != 0) c.texture = textures_[c.texture - 1u];
     ++seen_;
     const std::size_t hash = blockHash(b);
     for (auto [it, end] = byHash_.equal_range(hash); it != end; ++it)
@@ -139,77 +140,240 @@ WorldBox placedRootBox(const Hierarchy& h, const glm::dvec3& positionM, double y
   return box;
 }
 
+namespace {
+
+// A building of the district on the ground: its box and its root's position, in whole millimetres
+// from the district's origin, its root block and its turn.
+struct PlacedRoot {
+  std::array<Units, 3> lo, hi, position;
+  BlockId root = 0;
+  Rotation turn;
+};
+
+// The blocks over the buildings' roots: each block cuts the ground along x or z between buildings,
+// so that every building is one cell and each cell redirects to a building or to the next block
+// down (a k-d tree with as many cuts per block as there are gaps). Where no line on the ground
+// separates the buildings (four boxes turning around a fifth), one block of cells bounded by every
+// box side holds them.
+class RootTree {
+ public:
+  RootTree(Hierarchy& h, const std::vector<PlacedRoot>& buildings, Units top)
+      : h_(h), buildings_(buildings), top_(top) {}
+
+  // The block over `members`, spanning lo..hi on the ground ((x, z), millimetres).
+  Result<BlockId> node(const std::vector<std::size_t>& members, const std::array<Units, 2>& lo,
+                       const std::array<Units, 2>& hi) {
+    std::array<std::vector<Slab>, 2> slabs{slabsAlong(members, 0, lo[0]), slabsAlong(members, 2, lo[1])};
+    const int axis = slabs[1].size() > slabs[0].size() ? 1 : 0;
+    if (slabs[axis].size() < 2) return grid(members, lo, hi);
+    const std::size_t along = axis == 0 ? 0 : 2, across = axis == 0 ? 2 : 0;
+    Block b;
+    b.boundsM[1] = {0.0, toMetres(top_)};
+    b.boundsM[across] = {0.0, toMetres(hi[1 - axis] - lo[1 - axis])};
+    for (const Slab& slab : slabs[axis]) b.boundsM[along].push_back(toMetres(slab.start - lo[axis]));
+    b.boundsM[along].push_back(toMetres(hi[axis] - lo[axis]));
+    for (std::size_t k = 0; k < slabs[axis].size(); ++k) {
+      const Slab& slab = slabs[axis][k];
+      std::array<Units, 2> cellLo = lo, cellHi = hi;
+      cellLo[axis] = slab.start;
+      if (k + 1 < slabs[axis].size()) cellHi[axis] = slabs[axis][k + 1].start;
+      b.cells.push_back(Cell::redirect(static_cast<std::uint32_t>(b.redirections.size())));
+      if (slab.members.size() == 1) {
+        b.redirections.push_back(redirectionTo(slab.members.front(), cellLo));
+        continue;
+      }
+      auto child = node(slab.members, cellLo, cellHi);
+      if (!child) return child.error();
+      b.redirections.push_back(Redirection{*child, glm::dvec3(0.0), Rotation{}, {false, false, false}});
+    }
+    return h_.addBlock(std::move(b));
+  }
+
+ private:
+  // Buildings side by side along an axis, and where their cell starts.
+  struct Slab {
+    Units start = 0;
+    std::vector<std::size_t> members;
+  };
+
+  // The members in runs along axis a, a cut after each run that no box crosses; the first slab
+  // starts at lo, the next where the previous run ends (the gap between goes to the later one).
+  std::vector<Slab> slabsAlong(std::vector<std::size_t> members, std::size_t a, Units lo) const {
+    std::sort(members.begin(), members.end(), [&](std::size_t i, std::size_t j) {
+      return buildings_[i].lo[a] != buildings_[j].lo[a] ? buildings_[i].lo[a] < buildings_[j].lo[a] : i < j;
+    });
+    std::vector<Slab> slabs{{lo, {}}};
+    Units runEnd = lo;
+    for (std::size_t i : members) {
+      if (!slabs.back().members.empty() && buildings_[i].lo[a] >= runEnd) slabs.push_back({runEnd, {}});
+      slabs.back().members.push_back(i);
+      runEnd = std::max(runEnd, buildings_[i].hi[a]);
+    }
+    return slabs;
+  }
+
+  // Building i's root, from a cell whose minimum corner on the ground is cellLo.
+  Redirection redirectionTo(std::size_t i, const std::array<Units, 2>& cellLo) const {
+    const PlacedRoot& b = buildings_[i];
+    const glm::dvec3 offset(toMetres(b.position[0] - cellLo[0]), toMetres(b.position[1]),
+                            toMetres(b.position[2] - cellLo[1]));
+    return Redirection{b.root, offset, b.turn, {false, false, false}};
+  }
+
+  // One block whose boundaries are every member box's sides: the cells of a box redirect to its
+  // building, each with the offset of the building's root from the cell.
+  Result<BlockId> grid(const std::vector<std::size_t>& members, const std::array<Units, 2>& lo,
+                       const std::array<Units, 2>& hi) {
+    std::vector<Units> xs{lo[0], hi[0]}, zs{lo[1], hi[1]};
+    for (std::size_t i : members) {
+      xs.insert(xs.end(), {buildings_[i].lo[0], buildings_[i].hi[0]});
+      zs.insert(zs.end(), {buildings_[i].lo[2], buildings_[i].hi[2]});
+    }
+    xs = distinct(xs);
+    zs = distinct(zs);
+    Block b;
+    for (Units x : xs) b.boundsM[0].push_back(toMetres(x - lo[0]));
+    b.boundsM[1] = {0.0, toMetres(top_)};
+    for (Units z : zs) b.boundsM[2].push_back(toMetres(z - lo[1]));
+    b.cells.assign((xs.size() - 1) * (zs.size() - 1), Cell::empty());
+    std::vector<std::size_t> owner(b.cells.size());
+    for (std::size_t i : members)
+      for (std::size_t x = indexOf(xs, buildings_[i].lo[0]); x < indexOf(xs, buildings_[i].hi[0]); ++x)
+        for (std::size_t z = indexOf(zs, buildings_[i].lo[2]); z < indexOf(zs, buildings_[i].hi[2]); ++z) {
+          const std::size_t c = b.cellIndex(static_cast<int>(x), 0, static_cast<int>(z));
+          Cell& cell = b.cells[c];
+          if (cell.kind != CellKind::Empty)
+            return Error{"building " + std::to_string(i) + " overlaps building " + std::to_string(owner[c]) +
+                         " on the ground"};
+          owner[c] = i;
+          cell = Cell::redirect(static_cast<std::uint32_t>(b.redirections.size()));
+          b.redirections.push_back(redirectionTo(i, {xs[x], zs[z]}));
+        }
+    return h_.addBlock(std::move(b));
+  }
+
+  Hierarchy& h_;
+  const std::vector<PlacedRoot>& buildings_;
+  Units top_;
+};
+
+}  // namespace
+
 Result<District> mergeDistrict(const std::vector<PlacedHierarchy>& buildings) {
   if (buildings.empty()) return Error{"a district needs at least one building"};
   District d;
   BlockMerger merger(d.hierarchy);
-  std::vector<BlockId> roots;
+  std::vector<PlacedRoot> placed(buildings.size());
   for (std::size_t i = 0; i < buildings.size(); ++i) {
     auto root = merger.addBuilding(*buildings[i].hierarchy, i);
     if (!root) return root.error();
-    roots.push_back(*root);
+    placed[i].root = *root;
+    placed[i].turn = yawRotation(buildings[i].yawDeg);
   }
   d.buildingBlocks = merger.blocksSeen();
   d.mergedBlocks = merger.blocksMerged();
 
   // The buildings' boxes in whole millimetres from the district's origin, as the format keeps them.
-  std::array<Units, 3> origin{INT64_MAX, INT64_MAX, INT64_MAX};
-  std::vector<std::array<Units, 3>> lo(buildings.size()), hi(buildings.size()), position(buildings.size());
+  std::array<Units, 3> origin{INT64_MAX, INT64_MAX, INT64_MAX}, extent{INT64_MIN, INT64_MIN, INT64_MIN};
   for (std::size_t i = 0; i < buildings.size(); ++i) {
     const PlacedHierarchy& b = buildings[i];
     const WorldBox box = placedRootBox(*b.hierarchy, b.positionM, b.yawDeg);
     for (std::size_t a = 0; a < 3; ++a) {
-      lo[i][a] = toUnits(box.min[static_cast<int>(a)]);
-      hi[i][a] = toUnits(box.max[static_cast<int>(a)]);
-      position[i][a] = toUnits(b.positionM[static_cast<int>(a)]);
-      origin[a] = std::min(origin[a], lo[i][a]);
+      placed[i].lo[a] = toUnits(box.min[static_cast<int>(a)]);
+      placed[i].hi[a] = toUnits(box.max[static_cast<int>(a)]);
+      placed[i].position[a] = toUnits(b.positionM[static_cast<int>(a)]);
+      origin[a] = std::min(origin[a], placed[i].lo[a]);
+      extent[a] = std::max(extent[a], placed[i].hi[a]);
     }
   }
-  std::vector<Units> xs{0}, zs{0};
-  Units top = 1;
-  for (std::size_t i = 0; i < buildings.size(); ++i) {
+  for (PlacedRoot& b : placed)
     for (std::size_t a = 0; a < 3; ++a) {
-      lo[i][a] -= origin[a];
-      hi[i][a] -= origin[a];
-      position[i][a] -= origin[a];
+      b.lo[a] -= origin[a];
+      b.hi[a] -= origin[a];
+      b.position[a] -= origin[a];
     }
-    xs.push_back(lo[i][0]);
-    xs.push_back(hi[i][0]);
-    zs.push_back(lo[i][2]);
-    zs.push_back(hi[i][2]);
-    top = std::max(top, hi[i][1]);
-  }
-  xs = distinct(xs);
-  zs = distinct(zs);
-  Block root;
-  for (Units x : xs) root.boundsM[0].push_back(toMetres(x));
-  root.boundsM[1] = {0.0, toMetres(top)};
-  for (Units z : zs) root.boundsM[2].push_back(toMetres(z));
-  root.cells.assign((xs.size() - 1) * (zs.size() - 1), Cell::empty());
-  std::vector<std::size_t> owner(root.cells.size());
-  for (std::size_t i = 0; i < buildings.size(); ++i) {
-    const Rotation turn = yawRotation(buildings[i].yawDeg);
-    for (std::size_t x = indexOf(xs, lo[i][0]); x < indexOf(xs, hi[i][0]); ++x)
-      for (std::size_t z = indexOf(zs, lo[i][2]); z < indexOf(zs, hi[i][2]); ++z) {
-        const std::size_t c = root.cellIndex(static_cast<int>(x), 0, static_cast<int>(z));
-        Cell& cell = root.cells[c];
-        if (cell.kind != CellKind::Empty)
-          return Error{"building " + std::to_string(i) + " overlaps building " + std::to_string(owner[c]) +
-                       " on the ground"};
-        owner[c] = i;
-        cell = Cell::redirect(static_cast<std::uint32_t>(root.redirections.size()));
-        const glm::dvec3 offset(toMetres(position[i][0] - xs[x]), toMetres(position[i][1]),
-                                toMetres(position[i][2] - zs[z]));
-        root.redirections.push_back(Redirection{roots[i], offset, turn, {false, false, false}});
-      }
-  }
-  d.hierarchy.root = d.hierarchy.addBlock(std::move(root));
-  // Sides of buildings in neighbouring rows make narrow cells that one metadata array cannot
-  // index over the whole district: split the root where the format needs it.
+  std::vector<std::size_t> all(buildings.size());
+  std::iota(all.begin(), all.end(), std::size_t{0});
+  RootTree tree(d.hierarchy, placed, std::max<Units>(1, extent[1] - origin[1]));
+  auto root = tree.node(all, {0, 0}, {extent[0] - origin[0], extent[2] - origin[2]});
+  if (!root) return root.error();
+  d.hierarchy.root = *root;
+  // A block of many buildings side by side may have more cells, or narrower ones, than one
+  // metadata array indexes: split them where the format needs it.
   if (auto split = splitBlocks(d.hierarchy); !split) return split.error();
   d.originM = {toMetres(origin[0]), toMetres(origin[1]), toMetres(origin[2])};
   d.boundsM = {d.originM, d.originM + d.hierarchy.blocks[d.hierarchy.root].sizeM()};
   return d;
+}
+
+std::vector<std::vector<std::size_t>> districtGroups(const std::vector<WorldBox>& boxes, double sideM,
+                                                     const glm::dvec2& cornerM) {
+  // A box on the ground in whole millimetres: x0, z0, x1, z1.
+  using Footprint = std::array<Units, 4>;
+  const auto footprintOf = [](const WorldBox& b) {
+    return Footprint{toUnits(b.min.x), toUnits(b.min.z), toUnits(b.max.x), toUnits(b.max.z)};
+  };
+  const auto overlap = [](const Footprint& a, const Footprint& b) {
+    return a[0] < b[2] && b[0] < a[2] && a[1] < b[3] && b[1] < a[3];
+  };
+  std::map<std::pair<long long, long long>, std::vector<std::vector<std::size_t>>> squares;
+  for (std::size_t i = 0; i < boxes.size(); ++i) {
+    const glm::dvec3 centre = boxes[i].centre();
+    auto& groups = squares[{std::llround(std::floor((centre.x - cornerM.x) / sideM)),
+                            std::llround(std::floor((centre.z - cornerM.y) / sideM))}];
+    const Footprint mine = footprintOf(boxes[i]);
+    const auto fits = [&](const std::vector<std::size_t>& group) {
+      return std::none_of(group.begin(), group.end(),
+                          [&](std::size_t j) { return overlap(mine, footprintOf(boxes[j])); });
+    };
+    auto group = std::find_if(groups.begin(), groups.end(), fits);
+    if (group == groups.end()) group = groups.insert(groups.end(), std::vector<std::size_t>{});
+    group->push_back(i);
+  }
+  std::vector<std::vector<std::size_t>> out;
+  for (auto& [square, groups] : squares)
+    for (std::vector<std::size_t>& group : groups) out.push_back(std::move(group));
+  return out;
+}
+
+namespace {
+
+void compileHalves(const std::vector<PlacedHierarchy>& buildings, const std::vector<std::size_t>& members,
+                   const std::string& suffix, std::vector<CompiledDistrict>& out, std::optional<Error>& error) {
+  std::vector<PlacedHierarchy> placed;
+  for (std::size_t i : members) placed.push_back(buildings[i]);
+  auto district = mergeDistrict(placed);
+  auto image = district ? compile(district->hierarchy) : Result<Image>(district.error());
+  if (!image && members.size() > 1) {
+    // Over one HNI's limits (its metadata region, most often): each half on its own.
+    const std::size_t half = members.size() / 2;
+    compileHalves(buildings,
+                  std::vector<std::size_t>(members.begin(), members.begin() + static_cast<std::ptrdiff_t>(half)),
+                  suffix + "a", out, error);
+    if (!error)
+      compileHalves(buildings,
+                    std::vector<std::size_t>(members.begin() + static_cast<std::ptrdiff_t>(half), members.end()),
+                    suffix + "b", out, error);
+    return;
+  }
+  if (image)
+    if (Status s = validate(*image); !s) image = Error{"the compiled HNI does not validate: " + s.error().message};
+  if (!image) {
+    error = image.error();
+    return;
+  }
+  out.push_back(CompiledDistrict{members, suffix, std::move(*district), std::move(*image)});
+}
+
+}  // namespace
+
+Result<std::vector<CompiledDistrict>> compileDistrict(const std::vector<PlacedHierarchy>& buildings,
+                                                      const std::vector<std::size_t>& members) {
+  std::vector<CompiledDistrict> out;
+  std::optional<Error> error;
+  compileHalves(buildings, members, "", out, error);
+  if (error) return *error;
+  return out;
 }
 
 }  // namespace nut::converter

@@ -583,9 +583,13 @@ Status writeConversion(Conversion& conversion, const std::string& pngPath, const
   std::error_code ec;
   conversion.report.pngBytes = std::filesystem::file_size(pngPath, ec);
   if (complementPath.empty()) return Ok{};
-  if (!scene::isGlbPath(complementPath)) return writeObj(complementPath, conversion.complement);
-  const std::vector<std::uint8_t> glb = meshoptGlb(conversion.complement);
-  return writeTextFile(complementPath, std::string(glb.begin(), glb.end()));  // written whole, any bytes
+  return writeComplement(complementPath, conversion.complement);
+}
+
+Status writeComplement(const std::string& path, const TriangleMesh& mesh) {
+  if (!scene::isGlbPath(path)) return writeObj(path, mesh);
+  const std::vector<std::uint8_t> glb = meshoptGlb(mesh);
+  return writeTextFile(path, std::string(glb.begin(), glb.end()));  // written whole, any bytes
 }
 
 namespace {

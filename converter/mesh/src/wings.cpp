@@ -2,6 +2,8 @@
 // (converter/wings.hpp).
 #include <converter/wings.hpp>
 
+#include <converter/assemble.hpp>
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -157,8 +159,7 @@ glm::dvec3 joinAtCut(Hierarchy& main, const glm::dvec3& mainOriginM, const Hiera
   std::vector<std::uint16_t> material(wing.materials.size());
   for (std::size_t m = 0; m < wing.materials.size(); ++m) material[m] = main.addMaterial(wing.materials[m]);
   for (Block b : wing.blocks) {
-    for (Cell& c : b.cells)
-      if (c.hasMaterial()) c.material = material[c.material];
+    renumberMaterials(b, material);
     for (Redirection& r : b.redirections) r.target += first;
     main.addBlock(std::move(b));
   }

@@ -9,6 +9,7 @@
 // pointed at the block still sees the same content.
 #pragma once
 
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -26,7 +27,11 @@ bool blockFits(const Block& b, std::string* why = nullptr);
 // the format can tell apart at any block size).
 Result<int> splitBlocks(Hierarchy& h);
 
-// Drops materials no cell uses and renumbers the rest.
+// Drops materials no cell or plane surface uses and renumbers the rest.
 void compactMaterials(Hierarchy& h);
+
+// Renumbers every material index of the block, cells' and plane surfaces' alike: m becomes to[m].
+// For blocks moved into another hierarchy's material list (a district, a turned wing).
+void renumberMaterials(Block& b, const std::vector<std::uint16_t>& to);
 
 }  // namespace nut::converter

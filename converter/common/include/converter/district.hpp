@@ -6,13 +6,16 @@
 #pragma once
 
 #include <cstddef>
+#include <string>
 #include <vector>
 
+#include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
 #include <nut/camera.hpp>
 #include <nut/error.hpp>
 #include <nut/hierarchy.hpp>
+#include <nut/image.hpp>
 
 namespace nut::converter {
 
@@ -40,6 +43,35 @@ struct District {
 // on the ground, and whatever checkHierarchy finds in a building; each names the building by its
 // index.
 Result<District> mergeDistrict(const std::vector<PlacedHierarchy>& buildings);
+
+// The side of a district on the ground (`--pack-atlases` of `nut city` and `nut convert`).
+inline constexpr double kDistrictSideM = 256.0;
+
+// Buildings grouped into districts: squares of sideM on the ground, one corner of them at
+// cornerM (x, z), by the centre of each world box, squares in the order of their (x, z) index.
+// Within a square a building whose box overlaps a member of a group on the ground (neighbours
+// converted from one mesh share a wall, and each box holds it) joins the square's next group, so
+// that every group merges. Overlap is judged on boxes taken to the millimetre, as mergeDistrict
+// takes them: boxes that touch do not overlap.
+std::vector<std::vector<std::size_t>> districtGroups(const std::vector<WorldBox>& boxes, double sideM,
+                                                     const glm::dvec2& cornerM);
+
+// A district as one HNI: the members (indices into the buildings given), the suffix its file name
+// takes when a district was halved ("" when whole; "a", "b", "ab", ...), the merged hierarchy and
+// its compiled image, which validates.
+struct CompiledDistrict {
+  std::vector<std::size_t> members;
+  std::string suffix;
+  District district;
+  Image image;
+};
+
+// The members merged (mergeDistrict) and compiled as one HNI or, while they do not fit one (its
+// metadata region holds every block's header and record), each half on its own, along their
+// order. Errors: mergeDistrict's, and an HNI that does not compile or validate even for one
+// building.
+Result<std::vector<CompiledDistrict>> compileDistrict(const std::vector<PlacedHierarchy>& buildings,
+                                                      const std::vector<std::size_t>& members);
 
 // The world box of h's root block placed at positionM and turned by yawDeg about +y through it.
 WorldBox placedRootBox(const Hierarchy& h, const glm::dvec3& positionM, double yawDeg);

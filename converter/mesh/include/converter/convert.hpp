@@ -118,12 +118,14 @@ Result<Conversion> convertMesh(TriangleMesh mesh, const ConvertOptions& options 
 // the world origin.
 HniText hniText(const Conversion& conversion);
 
+// Writes a complementary mesh atomically: a binary glTF compressed with meshoptimizer when the path
+// ends in .glb (mesh_size.hpp's meshoptGlb: 16-bit positions over the mesh's bounds), else OBJ + MTL.
+Status writeComplement(const std::string& path, const TriangleMesh& mesh);
+
 // Writes the HNI (PNG with hniText in its text chunks) and, when complementPath is not empty, the
-// complementary mesh: a binary glTF compressed with meshoptimizer when the path ends in .glb
-// (mesh_size.hpp's meshoptGlb: 16-bit positions over the mesh's bounds), else OBJ + MTL; both
-// atomically. Sets
-// report.pngBytes. PngEffort::Small writes in a few milliseconds what Smallest (Zopfli) writes
-// 5-15 % smaller in about a second per 150 KB of pixels.
+// complementary mesh (writeComplement), both atomically. Sets report.pngBytes. PngEffort::Small
+// writes in a few milliseconds what Smallest (Zopfli) writes 5-15 % smaller in about a second per
+// 150 KB of pixels.
 Status writeConversion(Conversion& conversion, const std::string& pngPath, const std::string& complementPath,
                        PngEffort effort = PngEffort::Smallest);
 
