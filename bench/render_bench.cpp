@@ -3,8 +3,10 @@
 // converted sample buildings, from the default camera and from a close-up that fills the screen
 // (the paper's Table 5). Embree is measured one ray at a time (rtcIntersect1), in packets of 8 and
 // 16 (rtcIntersect8/16) and as a coherent stream (rtcIntersect1M); the report takes the fastest
-// as the peer. Then the caster's level-of-detail settings against the error they cost (pixels
-// differing from full detail). Results read as rays/s; make bench writes docs/BENCHMARKS.md.
+// as the peer. Then a generated LoD2 district converted with and without plane cells, drawn with
+// its complementary meshes, against Embree on its source mesh; and the caster's level-of-detail
+// settings against the error they cost (pixels differing from full detail). Results read as
+// rays/s; make bench writes docs/BENCHMARKS.md.
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
@@ -16,6 +18,7 @@
 #include <memory>
 #include <string>
 #include <thread>
+#include <vector>
 
 #include <converter/convert.hpp>
 #include <meshref/embree_renderer.hpp>
@@ -25,6 +28,8 @@
 #include <nut/png_io.hpp>
 #include <nut/raycast.hpp>
 #include <scene/obj.hpp>
+#include <scene/scene.hpp>
+#include <scene/scene_render.hpp>
 
 namespace {
 
@@ -169,6 +174,83 @@ void embree(benchmark::State& state, const std::string& name, View view, nut::me
   state.counters["triangles"] = static_cast<double>(s.mesh.triangles.size());
 }
 
+// The generated LoD2 district (tests/data/lod2_district_seed1.obj: 30 buildings, roofs and walls at
+// any angle), each building converted with and without plane cells and drawn as `nut render
+// city.json` draws a converted folder: the HNIs with their complementary meshes
+// (scene::SceneRenderer, Embree for the meshes). The peer is Embree on the source mesh.
+struct District {
+  std::vector<nut::Image> images[2];  // without, with plane cells
+  std::unique_ptr<nut::scene::SceneRenderer> renderers[2];
+  std::size_t complementTriangles[2]{}, planeCells[2]{};
+  nut::TriangleMesh source;
+  std::unique_ptr<nut::meshref::EmbreeRenderer> embree;
+  nut::Camera camera;
+};
+
+const District& district() {
+  static const std::unique_ptr<District> d = [] {
+    auto out = std::make_unique<District>();
+    const auto obj = orFail(nut::scene::readObj(std::string(NUT_SOURCE_DIR) + "/tests/data/lod2_district_seed1.obj"));
+    out->source = orFail(mergeMeshes(obj.objects, "district"));
+    out->embree = std::make_unique<nut::meshref::EmbreeRenderer>(
+        orFail(nut::meshref::EmbreeRenderer::create(out->source)));
+    for (int planes = 0; planes < 2; ++planes) {
+      nut::converter::ConvertOptions options;
+      options.solid.planeCells = planes == 1;
+      std::vector<nut::TriangleMesh> complements;
+      std::vector<glm::dvec3> origins;
+      for (const nut::TriangleMesh& building : obj.objects) {
+        nut::converter::Conversion c = orFail(nut::converter::convertMesh(building, options));
+        out->complementTriangles[planes] += c.complement.triangles.size();
+        out->planeCells[planes] += static_cast<std::size_t>(c.report.solid.planeCells);
+        out->images[planes].push_back(std::move(c.image));
+        origins.push_back(c.originM);
+        complements.push_back(std::move(c.complement));
+      }
+      std::vector<nut::scene::PlacedHni> placed;
+      for (std::size_t i = 0; i < origins.size(); ++i) placed.push_back({&out->images[planes][i], origins[i]});
+      std::vector<const nut::TriangleMesh*> meshes;
+      for (const nut::TriangleMesh& m : complements)
+        if (!m.triangles.empty()) meshes.push_back(&m);
+      out->renderers[planes] = std::make_unique<nut::scene::SceneRenderer>(
+          placed, orFail(nut::meshref::traceMeshes(meshes)));
+    }
+    nut::WorldBox bounds{glm::dvec3(INFINITY), glm::dvec3(-INFINITY)};
+    for (const glm::dvec3& p : out->source.positions) {
+      bounds.min = glm::min(bounds.min, p);
+      bounds.max = glm::max(bounds.max, p);
+    }
+    out->camera = nut::fitCamera(bounds, kWidth, kHeight);
+    return out;
+  }();
+  return *d;
+}
+
+// Render/district/{nut_boxes_wedges_mesh, nut_plane_cells}: the CPU caster (exact lookup, as `nut
+// render`) with the complementary meshes; Render/district/embree_source: the source mesh.
+void districtNut(benchmark::State& state, int planes) {
+  const District& d = district();
+  nut::RayCastOptions options;
+  options.lookup = nut::Lookup::Exact;
+  for (auto _ : state) {
+    auto out = d.renderers[planes]->render(d.camera, options, kThreads);
+    benchmark::DoNotOptimize(out.colour.pixels.data());
+  }
+  state.SetItemsProcessed(state.iterations() * kWidth * kHeight);
+  state.counters["complement_triangles"] = static_cast<double>(d.complementTriangles[planes]);
+  state.counters["plane_cells"] = static_cast<double>(d.planeCells[planes]);
+}
+
+void districtEmbree(benchmark::State& state, nut::meshref::EmbreeRays rays) {
+  const District& d = district();
+  for (auto _ : state) {
+    auto out = d.embree->render(d.camera, kThreads, nullptr, rays);
+    benchmark::DoNotOptimize(out.colour.pixels.data());
+  }
+  state.SetItemsProcessed(state.iterations() * kWidth * kHeight);
+  state.counters["triangles"] = static_cast<double>(d.source.triangles.size());
+}
+
 const bool registered = [] {
   using nut::meshref::EmbreeRays;
   const std::pair<const char*, EmbreeRays> embreeModes[] = {{"embree", EmbreeRays::Single},
@@ -192,6 +274,11 @@ const bool registered = [] {
       add("Render/nut_exact" + suffix,
           [n, view](benchmark::State& st) { nutCaster(st, n, view, nut::Lookup::Exact, 0); });
     }
+  add("Render/district/nut_boxes_wedges_mesh", [](benchmark::State& st) { districtNut(st, 0); });
+  add("Render/district/nut_plane_cells", [](benchmark::State& st) { districtNut(st, 1); });
+  for (const auto& [method, rays] : embreeModes)
+    add("Render/district/" + std::string(method) + "_source",
+        [rays = rays](benchmark::State& st) { districtEmbree(st, rays); });
   // Level of detail on the building seen from six times the default distance.
   for (double lod : {0.0, 1.0, 2.0, 4.0, 8.0, 16.0})
     add("Render/far_lod" + std::to_string(static_cast<int>(lod)) + "px/building",

@@ -106,6 +106,30 @@ def raycast(r):
     return out
 
 
+def planecells(r):
+    base = "Render/district/{}/real_time"
+    rows = [("NUT, boxes and wedges + complementary mesh", "nut_boxes_wedges_mesh"),
+            ("NUT, plane cells + complementary mesh", "nut_plane_cells")]
+    rows += [(f"Embree {label} on the source mesh", f"{mode}_source") for mode, label in EMBREE_MODES]
+    if not all(r.has(base.format(key)) for _, key in rows):
+        return ["Not run."]
+    out = ["| renderer | ms per frame | Mrays/s | complementary triangles | plane cells | spread |",
+           "|---|---|---|---|---|---|"]
+    for label, key in rows:
+        name = base.format(key)
+        mesh = r.median(name, "complement_triangles") if key.startswith("nut") else r.median(name, "triangles")
+        cells = f"{r.median(name, 'plane_cells'):.0f}" if key.startswith("nut") else ""
+        triangles = f"{mesh:.0f}" if key.startswith("nut") else f"{mesh:.0f} (the source)"
+        out.append(f"| {label} | {r.median(name):.1f} | {r.median(name, 'items_per_second') / 1e6:.2f} "
+                   f"| {triangles} | {cells} | {pct(r.spread(name, 'items_per_second'))} |")
+    best = max(r.median(base.format(f"{m}_source"), "items_per_second") for m, _ in EMBREE_MODES)
+    planes = r.median(base.format("nut_plane_cells"), "items_per_second")
+    boxes = r.median(base.format("nut_boxes_wedges_mesh"), "items_per_second")
+    out.append(f"\nPlane cells / boxes and wedges: {planes / boxes:.2f}; plane cells / fastest Embree: "
+               f"{planes / best:.2f}.")
+    return out
+
+
 def scene(r):
     out = ["| view | ground grid, ms | Mrays/s | every HNI, ms | Mrays/s | every HNI / ground grid |",
            "|---|---|---|---|---|---|"]
@@ -222,6 +246,7 @@ def winding(r):
 SECTIONS = {
     "lookups": ("lookup_bench", lookups),
     "raycast": ("render_bench", raycast),
+    "planecells": ("render_bench", planecells),
     "scene": ("scene_bench", scene),
     "gl": ("gl_bench", gl),
     "packing": ("packer_bench", packing),
