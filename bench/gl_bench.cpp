@@ -1,8 +1,10 @@
 // Frame time of one sample building at 1280x720, the same camera, measured in one run: the GLSL
 // ray caster (OSMesa, and EGL: a GPU where there is one, else llvmpipe again), the CPU reference
 // caster (all cores), the GL raster of the building's exported mesh (OSMesa), and Embree on that
-// mesh (all cores). GL frames end with glFinish, so the time is the rendering's. Results read as
-// frames' milliseconds and rays (pixels) per second; docs/BENCHMARKS.md records a run.
+// mesh (all cores); then the generated LoD2 district with and without plane cells, with its
+// complementary meshes, against the raster of its source mesh. GL frames end with glFinish, so the
+// time is the rendering's. Results read as frames' milliseconds and rays (pixels) per second;
+// docs/BENCHMARKS.md records a run.
 #include <benchmark/benchmark.h>
 
 #include <cstdio>
@@ -16,6 +18,8 @@
 #include <nut/png_io.hpp>
 #include <nut/raycast.hpp>
 #include <viewer/offscreen.hpp>
+
+#include "lod2_district.hpp"
 
 namespace {
 
@@ -80,6 +84,53 @@ void glFrame(benchmark::State& state, nut::viewer::Backend backend, bool rayCast
   state.SetLabel((*renderer)->context().description());
 }
 
+// The generated LoD2 district (bench/lod2_district.hpp) on the GL back-end: its HNIs, without or
+// with plane cells, with their complementary meshes, exact lookup as `nut render`.
+void glDistrict(benchmark::State& state, nut::viewer::Backend backend, int planes) {
+  const nut::bench::Lod2District& d = nut::bench::lod2District(kWidth, kHeight);
+  nut::viewer::OffscreenOptions options;
+  options.backend = backend;
+  auto renderer = nut::viewer::OffscreenRenderer::create(options);
+  if (!renderer) {
+    state.SkipWithError(renderer.error().message.c_str());
+    return;
+  }
+  const nut::bench::ConvertedDistrict& c = d.converted[planes];
+  for (std::size_t i = 0; i < c.images.size(); ++i) {
+    if (nut::Status added = (*renderer)->addHni(c.images[i], c.originsM[i]); !added) fail(added.error().message);
+    if (!c.complements[i].triangles.empty())
+      if (nut::Status added = (*renderer)->addMesh(c.complements[i]); !added) fail(added.error().message);
+  }
+  nut::RayCastOptions cast;
+  cast.lookup = nut::Lookup::Exact;
+  if (nut::Status first = (*renderer)->draw(d.camera, cast); !first) fail(first.error().message);
+  for (auto _ : state)
+    if (nut::Status drawn = (*renderer)->draw(d.camera, cast); !drawn) fail(drawn.error().message);
+  setRate(state);
+  state.SetLabel((*renderer)->context().description());
+  state.counters["complement_triangles"] = static_cast<double>(c.complementTriangles);
+  state.counters["plane_cells"] = static_cast<double>(c.planeCells);
+}
+
+// The district's source mesh rasterised on the GL back-end: the peer of glDistrict.
+void glDistrictSource(benchmark::State& state, nut::viewer::Backend backend) {
+  const nut::bench::Lod2District& d = nut::bench::lod2District(kWidth, kHeight);
+  nut::viewer::OffscreenOptions options;
+  options.backend = backend;
+  auto renderer = nut::viewer::OffscreenRenderer::create(options);
+  if (!renderer) {
+    state.SkipWithError(renderer.error().message.c_str());
+    return;
+  }
+  if (nut::Status added = (*renderer)->addMesh(d.source); !added) fail(added.error().message);
+  if (nut::Status first = (*renderer)->draw(d.camera, {}); !first) fail(first.error().message);
+  for (auto _ : state)
+    if (nut::Status drawn = (*renderer)->draw(d.camera, {}); !drawn) fail(drawn.error().message);
+  setRate(state);
+  state.SetLabel((*renderer)->context().description());
+  state.counters["triangles"] = static_cast<double>(d.source.triangles.size());
+}
+
 void cpuCaster(benchmark::State& state) {
   const Scene& s = scene();
   const nut::HniRayCaster caster(s.png.image, s.png.text.originM);
@@ -117,5 +168,14 @@ BENCHMARK(cpuCaster)->Name("cpu_raycast")->Unit(benchmark::kMillisecond)->UseRea
 BENCHMARK_CAPTURE(glFrame, gl_mesh_raster/osmesa, Backend::OSMesa, false)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK_CAPTURE(glFrame, gl_mesh_raster/egl, Backend::Egl, false)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(embree)->Name("embree_mesh")->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK_CAPTURE(glDistrict, district_boxes_wedges_mesh/osmesa, Backend::OSMesa, 0)
+    ->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK_CAPTURE(glDistrict, district_plane_cells/osmesa, Backend::OSMesa, 1)
+    ->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK_CAPTURE(glDistrictSource, district_source_raster/osmesa, Backend::OSMesa)
+    ->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK_CAPTURE(glDistrict, district_boxes_wedges_mesh/egl, Backend::Egl, 0)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK_CAPTURE(glDistrict, district_plane_cells/egl, Backend::Egl, 1)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK_CAPTURE(glDistrictSource, district_source_raster/egl, Backend::Egl)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 }  // namespace

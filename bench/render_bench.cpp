@@ -31,6 +31,8 @@
 #include <scene/scene.hpp>
 #include <scene/scene_render.hpp>
 
+#include "lod2_district.hpp"
+
 namespace {
 
 constexpr int kWidth = 1280, kHeight = 720;
@@ -174,53 +176,30 @@ void embree(benchmark::State& state, const std::string& name, View view, nut::me
   state.counters["triangles"] = static_cast<double>(s.mesh.triangles.size());
 }
 
-// The generated LoD2 district (tests/data/lod2_district_seed1.obj: 30 buildings, roofs and walls at
-// any angle), each building converted with and without plane cells and drawn as `nut render
-// city.json` draws a converted folder: the HNIs with their complementary meshes
-// (scene::SceneRenderer, Embree for the meshes). The peer is Embree on the source mesh.
+// The generated LoD2 district drawn as `nut render city.json` draws a converted folder: the HNIs
+// with their complementary meshes (scene::SceneRenderer, Embree for the meshes), without and with
+// plane cells. The peer is Embree on the source mesh.
 struct District {
-  std::vector<nut::Image> images[2];  // without, with plane cells
   std::unique_ptr<nut::scene::SceneRenderer> renderers[2];
-  std::size_t complementTriangles[2]{}, planeCells[2]{};
-  nut::TriangleMesh source;
   std::unique_ptr<nut::meshref::EmbreeRenderer> embree;
-  nut::Camera camera;
 };
 
 const District& district() {
   static const std::unique_ptr<District> d = [] {
+    const nut::bench::Lod2District& source = nut::bench::lod2District(kWidth, kHeight);
     auto out = std::make_unique<District>();
-    const auto obj = orFail(nut::scene::readObj(std::string(NUT_SOURCE_DIR) + "/tests/data/lod2_district_seed1.obj"));
-    out->source = orFail(mergeMeshes(obj.objects, "district"));
     out->embree = std::make_unique<nut::meshref::EmbreeRenderer>(
-        orFail(nut::meshref::EmbreeRenderer::create(out->source)));
+        orFail(nut::meshref::EmbreeRenderer::create(source.source)));
     for (int planes = 0; planes < 2; ++planes) {
-      nut::converter::ConvertOptions options;
-      options.solid.planeCells = planes == 1;
-      std::vector<nut::TriangleMesh> complements;
-      std::vector<glm::dvec3> origins;
-      for (const nut::TriangleMesh& building : obj.objects) {
-        nut::converter::Conversion c = orFail(nut::converter::convertMesh(building, options));
-        out->complementTriangles[planes] += c.complement.triangles.size();
-        out->planeCells[planes] += static_cast<std::size_t>(c.report.solid.planeCells);
-        out->images[planes].push_back(std::move(c.image));
-        origins.push_back(c.originM);
-        complements.push_back(std::move(c.complement));
-      }
+      const nut::bench::ConvertedDistrict& c = source.converted[planes];
       std::vector<nut::scene::PlacedHni> placed;
-      for (std::size_t i = 0; i < origins.size(); ++i) placed.push_back({&out->images[planes][i], origins[i]});
+      for (std::size_t i = 0; i < c.images.size(); ++i) placed.push_back({&c.images[i], c.originsM[i]});
       std::vector<const nut::TriangleMesh*> meshes;
-      for (const nut::TriangleMesh& m : complements)
+      for (const nut::TriangleMesh& m : c.complements)
         if (!m.triangles.empty()) meshes.push_back(&m);
-      out->renderers[planes] = std::make_unique<nut::scene::SceneRenderer>(
-          placed, orFail(nut::meshref::traceMeshes(meshes)));
+      out->renderers[planes] =
+          std::make_unique<nut::scene::SceneRenderer>(placed, orFail(nut::meshref::traceMeshes(meshes)));
     }
-    nut::WorldBox bounds{glm::dvec3(INFINITY), glm::dvec3(-INFINITY)};
-    for (const glm::dvec3& p : out->source.positions) {
-      bounds.min = glm::min(bounds.min, p);
-      bounds.max = glm::max(bounds.max, p);
-    }
-    out->camera = nut::fitCamera(bounds, kWidth, kHeight);
     return out;
   }();
   return *d;
@@ -230,25 +209,27 @@ const District& district() {
 // render`) with the complementary meshes; Render/district/embree_source: the source mesh.
 void districtNut(benchmark::State& state, int planes) {
   const District& d = district();
+  const nut::bench::Lod2District& source = nut::bench::lod2District(kWidth, kHeight);
   nut::RayCastOptions options;
   options.lookup = nut::Lookup::Exact;
   for (auto _ : state) {
-    auto out = d.renderers[planes]->render(d.camera, options, kThreads);
+    auto out = d.renderers[planes]->render(source.camera, options, kThreads);
     benchmark::DoNotOptimize(out.colour.pixels.data());
   }
   state.SetItemsProcessed(state.iterations() * kWidth * kHeight);
-  state.counters["complement_triangles"] = static_cast<double>(d.complementTriangles[planes]);
-  state.counters["plane_cells"] = static_cast<double>(d.planeCells[planes]);
+  state.counters["complement_triangles"] = static_cast<double>(source.converted[planes].complementTriangles);
+  state.counters["plane_cells"] = static_cast<double>(source.converted[planes].planeCells);
 }
 
 void districtEmbree(benchmark::State& state, nut::meshref::EmbreeRays rays) {
   const District& d = district();
+  const nut::bench::Lod2District& source = nut::bench::lod2District(kWidth, kHeight);
   for (auto _ : state) {
-    auto out = d.embree->render(d.camera, kThreads, nullptr, rays);
+    auto out = d.embree->render(source.camera, kThreads, nullptr, rays);
     benchmark::DoNotOptimize(out.colour.pixels.data());
   }
   state.SetItemsProcessed(state.iterations() * kWidth * kHeight);
-  state.counters["triangles"] = static_cast<double>(d.source.triangles.size());
+  state.counters["triangles"] = static_cast<double>(source.source.triangles.size());
 }
 
 const bool registered = [] {

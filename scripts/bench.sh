@@ -62,7 +62,7 @@ print(f"This run took {starts[-1]:,} s ({starts[-1] / 60:.1f} minutes): {program
 PY
 sections=(pinned="$out/pinned.md" duration="$out/duration.md" pareto="$out/pareto/pareto.md" sizes="$out/sizes/sizes.md" scaling="$out/scaling.md"
           stability="$out/stability/stability.md")
-for name in lookups raycast planecells scene gl packing convert grammar load winding; do
+for name in lookups raycast planecells scene gl glplanecells packing convert grammar load winding; do
   sections+=("$name=$out/sections/$name.md")
 done
 python3 "$root/scripts/bench_report.py" "$root/docs/BENCHMARKS.md" "${sections[@]}"

@@ -130,6 +130,22 @@ def planecells(r):
     return out
 
 
+def glplanecells(r):
+    rows = [("GLSL caster, boxes and wedges + complementary mesh", "glDistrict/district_boxes_wedges_mesh"),
+            ("GLSL caster, plane cells + complementary mesh", "glDistrict/district_plane_cells"),
+            ("GL raster of the source mesh", "glDistrictSource/district_source_raster")]
+    out = ["| renderer | back-end | GL renderer | ms per frame | Mrays/s | spread |", "|---|---|---|---|---|---|"]
+    for backend in ("osmesa", "egl"):
+        for label, prefix in rows:
+            name = f"{prefix}/{backend}/real_time"
+            if not r.has(name):
+                out.append(f"| {label} | {backend} | not run | | | |")
+                continue
+            out.append(f"| {label} | {backend} | {r.labels.get(name, '—')} | {r.median(name):.2f} "
+                       f"| {r.median(name, 'items_per_second') / 1e6:.2f} | {pct(r.spread(name, 'items_per_second'))} |")
+    return out
+
+
 def scene(r):
     out = ["| view | ground grid, ms | Mrays/s | every HNI, ms | Mrays/s | every HNI / ground grid |",
            "|---|---|---|---|---|---|"]
@@ -249,6 +265,7 @@ SECTIONS = {
     "planecells": ("render_bench", planecells),
     "scene": ("scene_bench", scene),
     "gl": ("gl_bench", gl),
+    "glplanecells": ("gl_bench", glplanecells),
     "packing": ("packer_bench", packing),
     "load": ("load_bench", load),
     "convert": ("convert_bench", convert),
