@@ -47,6 +47,7 @@ struct Level {
   mat3 toWorld;      // rotation from this frame to the world
   int wrap;
   float tExit;       // the level ends here (box or parent cell exit)
+  float tStepLimit;  // a step crossing at or after this leaves the level instead (see land)
   ivec3 cell;
   vec3 lo, hi;       // the cell's boundaries along each axis, within the tile
   ivec3 kLo, kHi;    // metadata pixels holding them (-1 / M for the block faces)
@@ -110,8 +111,11 @@ float land(inout Level L, BlockInfo b, float tStart, float tLimit, vec3 entryNor
   }
   if (!(t0 < t1)) return -1.0;
   L.tExit = t1;
-  float scale = abs(t0) + max(abs(L.o.x), max(abs(L.o.y), abs(L.o.z)));
-  float tProbe = t0 + min(4.0 * kFloatEpsilon * scale, 0.5 * (t1 - t0));
+  // As the CPU caster (nut/src/raycast.cpp, land): the landing cell is looked up a few ulps past
+  // t0, and a boundary crossed that close before t1 is not crossed.
+  float reach = max(abs(L.o.x), max(abs(L.o.y), abs(L.o.z)));
+  float tProbe = t0 + min(4.0 * kFloatEpsilon * (abs(t0) + reach), 0.5 * (t1 - t0));
+  L.tStepLimit = t1 - min(4.0 * kFloatEpsilon * (abs(t1) + reach), 0.5 * (t1 - t0));
   for (int a = 0; a < 3; ++a) {
     float x = L.o[a] + tProbe * L.d[a];
     L.tile[a] = wraps(L, a) ? floor(x / b.size[a]) * b.size[a] : 0.0;
@@ -223,7 +227,7 @@ void main() {
       // Leave the current cell through the nearest boundary, or leave the level.
       int a = argMin(L.tNext);
       float tCross = L.tNext[a];
-      if (tCross >= L.tExit || !stepCell(L, B, a)) {
+      if (tCross >= L.tStepLimit || !stepCell(L, B, a)) {
         if (top == 0) break;
         t = L.tExit;
         L = stack[--top];

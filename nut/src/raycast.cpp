@@ -44,7 +44,8 @@ struct Level {
   Float3 invD;        // 1 / d: the traversal multiplies instead of dividing
   glm::mat3 toWorld;  // rotation from this frame to the world
   std::uint8_t wrap;
-  float tExit;  // the level ends here (box or parent cell exit)
+  float tExit;       // the level ends here (box or parent cell exit)
+  float tStepLimit;  // a step crossing at or after this leaves the level instead (see land())
   Int3 cell;
   Float3 lo, hi;  // the cell's boundaries along each axis, within the tile
   Float3 tile;    // start of the current tile (multiple of D) on wrapped axes
@@ -131,9 +132,13 @@ float land(Level& L, const HniRayCaster::Block& block, float tStart, float tLimi
   // The landing cell is looked up a few float ulps past t0 (never past the middle of the
   // interval): the transform into this frame carries that much rounding, and a cell the ray would
   // cross for less than it is an artefact of rounding (the parent's clip face and a boundary of
-  // this block that coincide), not geometry. The ray is still processed from t0.
-  const float scale = std::abs(t0) + std::max({std::abs(L.o[0]), std::abs(L.o[1]), std::abs(L.o[2])});
-  const float tProbe = t0 + std::min(4.0f * std::numeric_limits<float>::epsilon() * scale, 0.5f * (t1 - t0));
+  // this block that coincide), not geometry. The ray is still processed from t0. For the same
+  // reason a boundary crossed that close before t1 is not crossed: the ray leaves the level there.
+  // (t1 is finite: the root does not wrap, and a sub-block's limit is its parent cell's exit.)
+  const float reach = std::max({std::abs(L.o[0]), std::abs(L.o[1]), std::abs(L.o[2])});
+  constexpr float kUlps = 4.0f * std::numeric_limits<float>::epsilon();
+  const float tProbe = t0 + std::min(kUlps * (std::abs(t0) + reach), 0.5f * (t1 - t0));
+  L.tStepLimit = t1 - std::min(kUlps * (std::abs(t1) + reach), 0.5f * (t1 - t0));
   for (std::size_t a = 0; a < 3; ++a) {
     const AxisView& axis = block.axes[a];
     float x = L.o[a] + tProbe * L.d[a];
@@ -425,7 +430,7 @@ class HniRayCaster::Walk {
       Level& L = stack_[static_cast<std::size_t>(top)];
       const std::size_t a = argMin(L.tNext);
       const float tCross = L.tNext[a];
-      if (tCross < L.tExit && step<mode>(L, blockOf(L.block), a)) {
+      if (tCross < L.tStepLimit && step<mode>(L, blockOf(L.block), a)) {
         t = std::max(t, tCross);
         return true;
       }

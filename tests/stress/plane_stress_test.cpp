@@ -14,6 +14,9 @@
 
 #include <glm/geometric.hpp>
 
+#include <nut/hni.hpp>
+#include <nut/png_io.hpp>
+
 #include "../plane_roofs.hpp"
 #include "../random_hierarchy.hpp"
 #include "stress_support.hpp"
@@ -44,6 +47,26 @@ TEST(Stress, PlaneCellsInRandomHierarchies) {
   }
   outside.report();
   inside.report();
+}
+
+// A camera inside a random hierarchy with plane cells (tests/data/step_before_exit.png: what
+// randomHierarchy(93) with planeCellShare 0.5 made while it drew surface materials from its main
+// stream) looks along a sub-block whose boundary, in float, falls 2.5e-5 units before the parent
+// cell's exit. The caster stepped into the cell beyond and hit it where the exact path leaves the
+// parent; a step that close to its level's exit now leaves the level.
+TEST(Stress, AStepRoundedBeforeItsLevelsExitLeavesTheLevel) {
+  auto png = readPng(std::string(NUT_SOURCE_DIR) + "/tests/data/step_before_exit.png");
+  ASSERT_TRUE(png) << png.error().message;
+  auto h = decode(png->image);
+  ASSERT_TRUE(h) << h.error().message;
+  const auto s = makeScene("step before the parent cell's exit", *h, kCityOrigin);
+  ASSERT_TRUE(s);
+  Comparison comparison("a step rounded before its level's exit");
+  comparison.check(*s,
+                   {89, {250001.31241404545, 31.462099630344163, -599999.9677668598},
+                    {0.21291456439998221, -0.85795394829186877, -0.46752797871010798}},
+                   {.compare = Compare::Distance});
+  comparison.report();
 }
 
 // The roof houses with their planes at ordinary and at nearly axis-aligned angles.
