@@ -176,18 +176,17 @@ TEST(District, EqualBlocksOfTwoBuildingsAreStoredOnce) {
 
 // Plane surfaces keep their materials in a district: rays at each building show the same colours
 // through the district's HNI as through the building's own (the second building's materials are
-// renumbered, its planes' surface materials with its cells'). Opaque materials and the exact
-// lookup: a translucent building that spans two root cells is tinted again where the ray crosses
-// between them, and the heuristic lookup moves the root's boundaries by up to D / (512 M).
+// renumbered, its planes' surface materials with its cells'; translucent ones are composited as
+// through the building alone, since each building is one cell of the root tree). The exact
+// lookup: the heuristic one moves the root's boundaries by up to D / (512 M).
 TEST(District, PlaneSurfacesKeepTheirMaterials) {
   std::vector<Placement> buildings;
   for (std::size_t i = 0; i < 2; ++i) {
     testing::RandomHierarchyOptions options;
     options.planeCellShare = 0.5;
     options.maxCellM = 2.0;
-    Hierarchy h = quantized(testing::randomHierarchy(40 + i, options));
-    for (Material& m : h.materials) m.opacity = 255;
-    buildings.push_back({std::move(h), glm::dvec3(100.0 * static_cast<double>(i), 0.0, 0.0), 0.0});
+    buildings.push_back({quantized(testing::randomHierarchy(40 + i, options)),
+                         glm::dvec3(100.0 * static_cast<double>(i), 0.0, 0.0), 0.0});
   }
   auto parts = compileDistrict(placed(buildings), {0, 1});
   ASSERT_TRUE(parts) << parts.error().message;
