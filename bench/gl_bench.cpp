@@ -60,54 +60,58 @@ const Scene& scene() {
 
 void setRate(benchmark::State& state) { state.SetItemsProcessed(state.iterations() * kWidth * kHeight); }
 
-// A renderer of the back-end holding the HNI (rayCast) or the exported mesh; the first frame,
-// which compiles the shader variants, is drawn before timing. `lookup` is the ray caster's.
-void glFrame(benchmark::State& state, nut::viewer::Backend backend, bool rayCast,
-             nut::Lookup lookup = nut::Lookup::Heuristic) {
-  const Scene& s = scene();
+// An offscreen renderer of the back-end; null, with the benchmark skipped, when it cannot start.
+std::unique_ptr<nut::viewer::OffscreenRenderer> offscreen(benchmark::State& state, nut::viewer::Backend backend) {
   nut::viewer::OffscreenOptions options;
   options.backend = backend;
   auto renderer = nut::viewer::OffscreenRenderer::create(options);
   if (!renderer) {
     state.SkipWithError(renderer.error().message.c_str());
-    return;
+    return nullptr;
   }
-  const nut::Status added = rayCast ? (*renderer)->addHni(s.png.image, s.png.text.originM)
-                                    : (*renderer)->addMesh(s.mesh);
+  return std::move(*renderer);
+}
+
+// Times the renderer's frames from the camera; the first frame, which compiles the shader
+// variants, is drawn before timing.
+void timeFrames(benchmark::State& state, nut::viewer::OffscreenRenderer& renderer, const nut::Camera& camera,
+                const nut::RayCastOptions& cast) {
+  if (nut::Status first = renderer.draw(camera, cast); !first) fail(first.error().message);
+  for (auto _ : state)
+    if (nut::Status drawn = renderer.draw(camera, cast); !drawn) fail(drawn.error().message);
+  setRate(state);
+  state.SetLabel(renderer.context().description());
+}
+
+// A renderer of the back-end holding the HNI (rayCast) or the exported mesh. `lookup` is the ray
+// caster's.
+void glFrame(benchmark::State& state, nut::viewer::Backend backend, bool rayCast,
+             nut::Lookup lookup = nut::Lookup::Heuristic) {
+  const Scene& s = scene();
+  auto renderer = offscreen(state, backend);
+  if (!renderer) return;
+  const nut::Status added = rayCast ? renderer->addHni(s.png.image, s.png.text.originM) : renderer->addMesh(s.mesh);
   if (!added) fail(added.error().message);
   nut::RayCastOptions cast;
   cast.lookup = lookup;
-  if (nut::Status first = (*renderer)->draw(s.camera, cast); !first) fail(first.error().message);
-  for (auto _ : state)
-    if (nut::Status drawn = (*renderer)->draw(s.camera, cast); !drawn) fail(drawn.error().message);
-  setRate(state);
-  state.SetLabel((*renderer)->context().description());
+  timeFrames(state, *renderer, s.camera, cast);
 }
 
 // The generated LoD2 district (bench/lod2_district.hpp) on the GL back-end: its HNIs, without or
 // with plane cells, with their complementary meshes, exact lookup as `nut render`.
 void glDistrict(benchmark::State& state, nut::viewer::Backend backend, int planes) {
   const nut::bench::Lod2District& d = nut::bench::lod2District(kWidth, kHeight);
-  nut::viewer::OffscreenOptions options;
-  options.backend = backend;
-  auto renderer = nut::viewer::OffscreenRenderer::create(options);
-  if (!renderer) {
-    state.SkipWithError(renderer.error().message.c_str());
-    return;
-  }
+  auto renderer = offscreen(state, backend);
+  if (!renderer) return;
   const nut::bench::ConvertedDistrict& c = d.converted[planes];
   for (std::size_t i = 0; i < c.images.size(); ++i) {
-    if (nut::Status added = (*renderer)->addHni(c.images[i], c.originsM[i]); !added) fail(added.error().message);
+    if (nut::Status added = renderer->addHni(c.images[i], c.originsM[i]); !added) fail(added.error().message);
     if (!c.complements[i].triangles.empty())
-      if (nut::Status added = (*renderer)->addMesh(c.complements[i]); !added) fail(added.error().message);
+      if (nut::Status added = renderer->addMesh(c.complements[i]); !added) fail(added.error().message);
   }
   nut::RayCastOptions cast;
   cast.lookup = nut::Lookup::Exact;
-  if (nut::Status first = (*renderer)->draw(d.camera, cast); !first) fail(first.error().message);
-  for (auto _ : state)
-    if (nut::Status drawn = (*renderer)->draw(d.camera, cast); !drawn) fail(drawn.error().message);
-  setRate(state);
-  state.SetLabel((*renderer)->context().description());
+  timeFrames(state, *renderer, d.camera, cast);
   state.counters["complement_triangles"] = static_cast<double>(c.complementTriangles);
   state.counters["plane_cells"] = static_cast<double>(c.planeCells);
 }
@@ -115,19 +119,10 @@ void glDistrict(benchmark::State& state, nut::viewer::Backend backend, int plane
 // The district's source mesh rasterised on the GL back-end: the peer of glDistrict.
 void glDistrictSource(benchmark::State& state, nut::viewer::Backend backend) {
   const nut::bench::Lod2District& d = nut::bench::lod2District(kWidth, kHeight);
-  nut::viewer::OffscreenOptions options;
-  options.backend = backend;
-  auto renderer = nut::viewer::OffscreenRenderer::create(options);
-  if (!renderer) {
-    state.SkipWithError(renderer.error().message.c_str());
-    return;
-  }
-  if (nut::Status added = (*renderer)->addMesh(d.source); !added) fail(added.error().message);
-  if (nut::Status first = (*renderer)->draw(d.camera, {}); !first) fail(first.error().message);
-  for (auto _ : state)
-    if (nut::Status drawn = (*renderer)->draw(d.camera, {}); !drawn) fail(drawn.error().message);
-  setRate(state);
-  state.SetLabel((*renderer)->context().description());
+  auto renderer = offscreen(state, backend);
+  if (!renderer) return;
+  if (nut::Status added = renderer->addMesh(d.source); !added) fail(added.error().message);
+  timeFrames(state, *renderer, d.camera, {});
   state.counters["triangles"] = static_cast<double>(d.source.triangles.size());
 }
 

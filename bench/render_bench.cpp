@@ -188,8 +188,8 @@ const District& district() {
   static const std::unique_ptr<District> d = [] {
     const nut::bench::Lod2District& source = nut::bench::lod2District(kWidth, kHeight);
     auto out = std::make_unique<District>();
-    out->embree = std::make_unique<nut::meshref::EmbreeRenderer>(
-        orFail(nut::meshref::EmbreeRenderer::create(source.source)));
+    out->embree =
+        std::make_unique<nut::meshref::EmbreeRenderer>(orFail(nut::meshref::EmbreeRenderer::create(source.source)));
     for (int planes = 0; planes < 2; ++planes) {
       const nut::bench::ConvertedDistrict& c = source.converted[planes];
       std::vector<nut::scene::PlacedHni> placed;

@@ -227,8 +227,8 @@ void greyMaterials(std::vector<Material>& materials) {
 // source's): what still differs is shape (a face elsewhere or at another angle), the rest of the
 // difference is colour. Shape must stay under 1 % of the pixels in every view.
 TEST(KenneyFidelity, WhatRemainsIsColourNotShape) {
-  for (const char* name : {"kenney_building_small_a", "kenney_building_small_b", "kenney_building_small_c",
-                           "kenney_building_small_d"}) {
+  for (const char* name :
+       {"kenney_building_small_a", "kenney_building_small_b", "kenney_building_small_c", "kenney_building_small_d"}) {
     const std::string path = std::string(NUT_SOURCE_DIR) + "/../shared/data/" + name + ".obj";
     if (!fs::exists(path)) GTEST_SKIP() << path << " not present";
     auto obj = scene::readObj(path);
@@ -249,8 +249,8 @@ TEST(KenneyFidelity, WhatRemainsIsColourNotShape) {
     const testing::Fidelity shape = testing::measureFidelity(source, {&grey}, stem + "_grey", 99.0);
     std::printf("%s: pixels beyond 8/255 per view: %.2f %.2f %.2f %.2f %%, of them shape %.2f %.2f %.2f %.2f %%\n",
                 name, 100 - whole.withinPct[0], 100 - whole.withinPct[1], 100 - whole.withinPct[2],
-                100 - whole.withinPct[3], 100 - shape.withinPct[0], 100 - shape.withinPct[1],
-                100 - shape.withinPct[2], 100 - shape.withinPct[3]);
+                100 - whole.withinPct[3], 100 - shape.withinPct[0], 100 - shape.withinPct[1], 100 - shape.withinPct[2],
+                100 - shape.withinPct[3]);
     EXPECT_LT(100 - shape.worstWithinPct, 1.0) << name << ": see " << stem << "_grey.view*.diff.png";
   }
 }

@@ -63,7 +63,8 @@ TEST(Stress, AStepRoundedBeforeItsLevelsExitLeavesTheLevel) {
   ASSERT_TRUE(s);
   Comparison comparison("a step rounded before its level's exit");
   comparison.check(*s,
-                   {89, {250001.31241404545, 31.462099630344163, -599999.9677668598},
+                   {89,
+                    {250001.31241404545, 31.462099630344163, -599999.9677668598},
                     {0.21291456439998221, -0.85795394829186877, -0.46752797871010798}},
                    {.compare = Compare::Distance});
   comparison.report();
