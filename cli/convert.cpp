@@ -370,6 +370,8 @@ int run(const ConvertCliOptions& o) {
     std::error_code ec;
     if (!probe || fs::is_directory(o.input, ec)) return fail(o.input + ": cannot open", kUnreadable);
   }
+  if (o.packAtlases && writesOneHni(o.output))
+    return fail("--pack-atlases packs the buildings written into a folder: give -o FOLDER, not " + o.output, kUsage);
   auto options = convertOptionsOf(o);
   if (!options) return fail(options.error().message, kUsage);
   auto obj = scene::readObj(o.input, {o.zUp});

@@ -398,6 +398,12 @@ TEST(ConvertCli, PackAtlasesWritesADistrictHniAndComplementAndRendersLikeTheSour
   EXPECT_EQ(manifest->buildings[0].hni, "d0000.png");
   EXPECT_EQ(manifest->buildings[1].hni, "d0001.png");
   EXPECT_FALSE(fs::exists(out("overlap/a.png")));
+  const CliRun refused = nut("convert " + obj + " -o " + out("overlap.png") + " --pack-atlases");
+  EXPECT_EQ(refused.exitCode, 2);
+  EXPECT_NE(refused.stderrText.find("error: --pack-atlases packs the buildings written into a folder"),
+            std::string::npos)
+      << refused.stderrText;
+  EXPECT_FALSE(fs::exists(out("overlap.png")));
   const std::string boxesView = " --size 480x270 --eye 30,25,-20 --target 7,3,6";
   r = nut("render-mesh " + obj + " -o " + out("overlap-source.png") + boxesView);
   ASSERT_EQ(r.exitCode, 0) << r.stderrText;
