@@ -174,6 +174,51 @@ TEST(District, EqualBlocksOfTwoBuildingsAreStoredOnce) {
   EXPECT_EQ(district->hierarchy.materials.size(), h.materials.size());
 }
 
+// A building whose root is only a frame (one cell redirecting, turned a quarter, to its grid, as
+// a converted building turned about the vertical is stored) is redirected to straight: the frame
+// is not stored, and every point shows what the framed building shows there.
+TEST(District, AFrameRootIsNotStored) {
+  testing::RandomHierarchyOptions options;
+  options.maxCellM = 1.0;
+  const Hierarchy grid = quantized(testing::randomHierarchy(61, options));
+  const glm::dvec3 size = grid.blocks[grid.root].sizeM();
+  // A quarter turn about +y takes x to -z and z to x: the grid's box spans x in [0, size.z] and
+  // z in [-size.x, 0], moved by size.x along z into the frame.
+  Hierarchy framed = grid;
+  Block frame;
+  frame.boundsM = {std::vector<double>{0.0, size.z}, {0.0, size.y}, {0.0, size.x}};
+  frame.cells = {Cell::redirect(0)};
+  frame.redirections = {Redirection{grid.root, glm::dvec3(0.0, 0.0, size.x), Rotation{20, 0}, {false, false, false}}};
+  framed.root = framed.addBlock(std::move(frame));
+  const std::vector<Placement> buildings{{framed, glm::dvec3(3.25, 0.0, -7.5), 0.0},
+                                         {grid, glm::dvec3(40.0, 0.0, 0.0), 0.0}};
+  auto district = mergeDistrict(placed(buildings));
+  ASSERT_TRUE(district) << district.error().message;
+  auto alone = mergeDistrict(placed({buildings[1]}));
+  ASSERT_TRUE(alone) << alone.error().message;
+  // The framed building brought its grid's blocks, not its frame.
+  EXPECT_EQ(district->buildingBlocks, 2 * alone->buildingBlocks);
+  const Hierarchy& d = district->hierarchy;
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  int mismatches = 0, solid = 0;
+  const WorldBox box = placedRootBox(framed, buildings[0].positionM, 0.0);
+  for (int n = 0; n < 4000; ++n) {
+    const glm::dvec3 p = box.min + glm::dvec3(unit(rng), unit(rng), unit(rng)) * box.size();
+    const int expected = contentAt(framed, framed.root, p - buildings[0].positionM);
+    const int actual = contentAt(d, d.root, p - district->originM);
+    mismatches += expected < 0 ? actual >= 0
+                               : actual < 0 || d.materials[static_cast<std::size_t>(actual)] !=
+                                                   framed.materials[static_cast<std::size_t>(expected)];
+    solid += expected >= 0;
+  }
+  EXPECT_LE(mismatches, 2);
+  EXPECT_GT(solid, 1000);
+  auto image = compile(d);
+  ASSERT_TRUE(image) << image.error().message;
+  EXPECT_TRUE(validate(*image));
+}
+
 // Plane surfaces keep their materials in a district: rays at each building show the same colours
 // through the district's HNI as through the building's own (the second building's materials are
 // renumbered, its planes' surface materials with its cells'; translucent ones are composited as

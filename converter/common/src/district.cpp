@@ -64,8 +64,9 @@ class BlockMerger {
  public:
   explicit BlockMerger(Hierarchy& out) : out_(out) {}
 
-  Result<BlockId> addBuilding(const Hierarchy& h, std::size_t index) {
-    if (Status s = checkHierarchy(h); !s) return Error{"building " + std::to_string(index) + ": " + s.error().message};
+  // Adds the blocks of building `index` (a valid hierarchy) that `start`, its root or a block under
+  // it, reaches.
+  Result<BlockId> addBuilding(const Hierarchy& h, std::size_t index, BlockId start) {
     materials_.clear();
     for (const Material& m : h.materials) materials_.push_back(out_.addMaterial(m));
     textures_.clear();
@@ -79,7 +80,7 @@ class BlockMerger {
       textures_.push_back(static_cast<std::uint8_t>(it - out_.textures.begin() + 1));
     }
     added_.assign(h.blocks.size(), std::nullopt);
-    return add(h, h.root);
+    return add(h, start);
   }
 
   std::size_t blocksSeen() const { return seen_; }
@@ -148,7 +149,22 @@ struct PlacedRoot {
   std::array<Units, 3> lo, hi, position;
   BlockId root = 0;
   Rotation turn;
+  // Where a building's root is only a frame (one cell redirecting, turned, to its grid: a
+  // converted building turned about the vertical), the district redirects to the grid itself: the
+  // root's own record, moved by the root's position. Zero otherwise.
+  glm::dvec3 frameOffsetM{0.0};
 };
+
+// The redirection of h's root when the root is a frame the district can skip: one cell, a
+// redirection that does not tile (tiling would fill the district's larger cell), and the building
+// placed unturned (a turn would have to be composed with the record's).
+std::optional<Redirection> skippableFrame(const Hierarchy& h, double yawDeg) {
+  const Block& root = h.blocks[h.root];
+  if (yawDeg != 0.0 || root.cells.size() != 1 || root.cells[0].kind != CellKind::Redirection) return std::nullopt;
+  const Redirection& r = root.redirections[root.cells[0].redirection];
+  if (r.wrap[0] || r.wrap[1] || r.wrap[2]) return std::nullopt;
+  return r;
+}
 
 // The blocks over the buildings' roots: each block cuts the ground along x or z between buildings,
 // so that every building is one cell and each cell redirects to a building or to the next block
@@ -217,7 +233,7 @@ class RootTree {
     const PlacedRoot& b = buildings_[i];
     const glm::dvec3 offset(toMetres(b.position[0] - cellLo[0]), toMetres(b.position[1]),
                             toMetres(b.position[2] - cellLo[1]));
-    return Redirection{b.root, offset, b.turn, {false, false, false}};
+    return Redirection{b.root, offset + b.frameOffsetM, b.turn, {false, false, false}};
   }
 
   // One block whose boundaries are every member box's sides: the cells of a box redirect to its
@@ -265,10 +281,15 @@ Result<District> mergeDistrict(const std::vector<PlacedHierarchy>& buildings) {
   BlockMerger merger(d.hierarchy);
   std::vector<PlacedRoot> placed(buildings.size());
   for (std::size_t i = 0; i < buildings.size(); ++i) {
-    auto root = merger.addBuilding(*buildings[i].hierarchy, i);
+    const Hierarchy& h = *buildings[i].hierarchy;
+    if (Status valid = checkHierarchy(h); !valid)
+      return Error{"building " + std::to_string(i) + ": " + valid.error().message};
+    const std::optional<Redirection> frame = skippableFrame(h, buildings[i].yawDeg);
+    auto root = merger.addBuilding(h, i, frame ? frame->target : h.root);
     if (!root) return root.error();
     placed[i].root = *root;
-    placed[i].turn = yawRotation(buildings[i].yawDeg);
+    placed[i].turn = frame ? frame->rotation : yawRotation(buildings[i].yawDeg);
+    if (frame) placed[i].frameOffsetM = frame->offsetM;
   }
   d.buildingBlocks = merger.blocksSeen();
   d.mergedBlocks = merger.blocksMerged();
