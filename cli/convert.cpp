@@ -167,7 +167,7 @@ struct ConvertedBuilding {
   std::string name, hni, complement, error;
   int exitCode = kOk;
   glm::dvec3 originM{0.0};
-  WorldBox boundsM;  // the placed root block's, for the manifest
+  WorldBox boundsM;  // the placed root block's, for the manifest (without --pack-atlases)
   converter::ConvertReport report;
   Hierarchy hierarchy;          // with --pack-atlases
   TriangleMesh complementMesh;  // with --pack-atlases
@@ -193,11 +193,11 @@ std::vector<ConvertedBuilding> convertSideBySide(const ConvertCliOptions& o, std
       return;
     }
     b.originM = conversion->originM;
-    b.boundsM = HniRayCaster(conversion->image, conversion->originM).bounds();
     if (o.packAtlases) {
       b.hierarchy = std::move(conversion->hierarchy);
       b.complementMesh = std::move(conversion->complement);
     } else {
+      b.boundsM = HniRayCaster(conversion->image, conversion->originM).bounds();
       const bool hasComplement = !conversion->complement.triangles.empty();
       b.hni = stems[i] + ".png";
       b.complement = hasComplement ? stems[i] + ".complement." + o.complementFormat : "";

@@ -1,8 +1,8 @@
-// converter/district.hpp — neighbouring buildings as one hierarchy: a root block over their ground
-// plan whose cells redirect to each building where it stands, over the buildings' blocks merged,
-// equal blocks stored once. `nut city --pack-atlases` writes a district as one HNI this way
-// (docs/CITY.md, "Districts"): one file and one atlas rectangle instead of one per building, and a
-// block that many buildings share (a window, a storey) is stored once.
+// converter/district.hpp — neighbouring buildings as one hierarchy: blocks over their ground plan
+// whose cells redirect to each building where it stands, over the buildings' blocks merged, equal
+// blocks stored once. `nut city --pack-atlases` and `nut convert --pack-atlases` write a district
+// as one HNI this way (docs/CITY.md, "Districts"): one file and one atlas rectangle instead of one
+// per building, and a block that many buildings share (a window, a storey) is stored once.
 #pragma once
 
 #include <cstddef>
@@ -35,13 +35,15 @@ struct District {
   std::size_t mergedBlocks = 0;    // of them, equal to a block stored already
 };
 
-// The root spans the buildings' world boxes; its cell boundaries are their sides, so that no cell
-// meets two buildings, and the cells a building's box covers redirect to its root, turned by its
-// yaw (a cube rotation for multiples of 90 degrees, the format's yaw otherwise). Positions are
-// taken to the millimetre, as the format stores them. The root is split where the format's
-// per-axis limits need it (assemble.hpp). Errors: no buildings, two buildings whose boxes overlap
-// on the ground, and whatever checkHierarchy finds in a building; each names the building by its
-// index.
+// The root spans the buildings' world boxes. It and the blocks under it cut the ground between
+// buildings (a k-d tree, cuts along x or z at every gap), so that each building is one cell,
+// redirecting to its root turned by its yaw (a cube rotation for multiples of 90 degrees, the
+// format's yaw otherwise); where no line separates a group of boxes, one block bounded by all their
+// sides holds them. A root that is only a frame (one cell redirecting to the building's grid) of a
+// building placed unturned is not stored: the cell redirects to the grid. Positions are taken to
+// the millimetre, as the format stores them. Blocks are split where the format's per-axis limits
+// need it (assemble.hpp). Errors: no buildings, two buildings whose boxes overlap on the ground,
+// and whatever checkHierarchy finds in a building; each names the building by its index.
 Result<District> mergeDistrict(const std::vector<PlacedHierarchy>& buildings);
 
 // The side of a district on the ground (`--pack-atlases` of `nut city` and `nut convert`).
