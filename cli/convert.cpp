@@ -36,7 +36,7 @@ struct ConvertCliOptions {
   double toleranceM = 0.01;
   double angleDeg = 1.0;
   bool zUp = false, quiet = false, noAutoBlocks = false, noWedges = false, noAlign = false, noAxisOrder = false,
-       noWings = false, planeCells = false, packAtlases = false;
+       noWings = false, noSheets = false, planeCells = false, packAtlases = false;
   std::vector<std::string> blocks;
   int threads = 0;
   std::string pngEffort = "smallest";
@@ -86,6 +86,13 @@ Result<WorldBox> parseBox(const std::string& text) {
 void printSummary(const converter::ConvertReport& r, const std::string& output) {
   const auto& s = r.solid;
   std::fprintf(stderr, "convert: %s: %s\n", r.name.c_str(), r.check.summary().c_str());
+  if (r.sheets.found)
+    std::fprintf(stderr,
+                 "convert: %s: open sheets %.1f m^2 (%zu triangles) around a closed body; %s (%ju against %ju bytes)\n",
+                 r.name.c_str(), r.sheets.areaM2, r.sheets.triangles,
+                 r.sheets.applied ? "converted as the body" : "converted as it is",
+                 static_cast<std::uintmax_t>(r.sheets.applied ? r.sheets.bytesWith : r.sheets.bytesWithout),
+                 static_cast<std::uintmax_t>(r.sheets.applied ? r.sheets.bytesWithout : r.sheets.bytesWith));
   std::fprintf(
       stderr,
       "convert: %s: yaw %.2f deg (%s); grid %dx%dx%d, %lld solid cells (%lld wedges, %lld plane cells), %d blocks; "
@@ -111,6 +118,7 @@ Result<converter::ConvertOptions> convertOptionsOf(const ConvertCliOptions& o) {
   options.solid.threads = o.threads;
   options.alignYaw = !o.noAlign;
   options.turnedWings = !o.noWings;
+  options.detachSheets = !o.noSheets;
   options.blocks.automatic = !o.noAutoBlocks;
   options.axisOrder = !o.noAxisOrder;
   for (const std::string& text : o.blocks) {
@@ -434,6 +442,9 @@ void addConvertCommand(CLI::App& app, int& exitCode) {
   cmd->add_flag("--no-wings", o->noWings,
                 "Do not convert a wing turned against the rest of the building in a frame of its own (its walls then "
                 "go to the complementary mesh)");
+  cmd->add_flag("--no-sheets", o->noSheets,
+                "Do not also convert an open mesh as the closed body left once sheets hanging off it (roofs "
+                "overhanging their walls) are peeled off; that is kept when its files are smaller");
   cmd->add_flag("--pack-atlases", o->packAtlases,
                 "With -o FOLDER: write one HNI and one complementary mesh per district of 256 m instead of one per "
                 "building: the buildings' blocks merged, equal blocks stored once, fewer and smaller files");

@@ -19,53 +19,17 @@ namespace {
 
 using glm::dvec3;
 
-// Vertices closer than this are one place, and an edge lies on another's line when its far end is
-// this close to that line. The car park sample turned 37° about the vertical and written to the
-// micrometre has its T-junctions 1-2 µm off the edges they meet: matched exactly, that closed
-// surface would be taken for an open one. A millimetre is a tenth of the default plane tolerance; a
-// gap this narrow is no opening.
-constexpr double kSamePlaceM = 1e-3;
-
 using Cell = std::array<std::int64_t, 3>;
 
 // A coordinate's cell index, clamped to +-2^62 so that the index and its neighbours (+-1) fit an
 // int64: coordinates beyond 4.6e15 m, which no building has (such a mesh is refused for its size
 // later), share the outermost cell, where vertices are still compared by their distance.
-std::int64_t cellIndex(double x) {
+std::int64_t cellIndex(double x, double size) {
   constexpr double kLimit = 4611686018427387904.0;  // 2^62
-  return static_cast<std::int64_t>(std::clamp(std::floor(x / kSamePlaceM), -kLimit, kLimit));
+  return static_cast<std::int64_t>(std::clamp(std::floor(x / size), -kLimit, kLimit));
 }
 
-Cell cellOf(const dvec3& p) { return {cellIndex(p.x), cellIndex(p.y), cellIndex(p.z)}; }
-
-// The place of each vertex in `used`: vertices within kSamePlaceM of each other (transitively)
-// are one place, named by one of them. Two such vertices lie in neighbouring cells of a
-// kSamePlaceM grid; sorted by cell, a vertex's neighbours in cells (x+dx, y+dy, z-1..z+1) are one
-// run, whose start only moves forward as the vertices are taken in order.
-std::vector<std::uint32_t> placesOf(std::span<const dvec3> points, std::span<const std::uint32_t> used) {
-  std::vector<std::pair<Cell, std::uint32_t>> sorted;
-  sorted.reserve(used.size());
-  for (std::uint32_t v : used) sorted.emplace_back(cellOf(points[v]), v);
-  std::sort(sorted.begin(), sorted.end());
-  UnionFind same(points.size());
-  std::array<std::size_t, 9> runStart{};
-  for (std::size_t i = 0; i < sorted.size(); ++i) {
-    const auto& [cell, v] = sorted[i];
-    std::size_t k = 0;
-    for (std::int64_t dx = -1; dx <= 1; ++dx)
-      for (std::int64_t dy = -1; dy <= 1; ++dy) {
-        const Cell first{cell[0] + dx, cell[1] + dy, cell[2] - 1}, last{cell[0] + dx, cell[1] + dy, cell[2] + 1};
-        std::size_t& j = runStart[k++];
-        while (j < sorted.size() && sorted[j].first < first) ++j;
-        // Each pair once: the earlier vertex in the order is compared with the later.
-        for (std::size_t m = j; m < i && sorted[m].first <= last; ++m)
-          if (glm::length(points[sorted[m].second] - points[v]) <= kSamePlaceM) same.unite(sorted[m].second, v);
-      }
-  }
-  std::vector<std::uint32_t> place(points.size());
-  for (std::uint32_t v : used) place[v] = same.find(v);
-  return place;
-}
+Cell cellOf(const dvec3& p, double size) { return {cellIndex(p.x, size), cellIndex(p.y, size), cellIndex(p.z, size)}; }
 
 double distanceToLine(const dvec3& q, const dvec3& a, const dvec3& b) {
   const dvec3 d = glm::normalize(b - a);
@@ -86,6 +50,33 @@ std::pair<std::vector<std::uint32_t>, std::vector<std::uint32_t>> byKey(std::siz
 }
 
 }  // namespace
+
+// Two vertices `radius` apart lie in neighbouring cells of a grid of that size; sorted by cell, a vertex's neighbours
+// in cells (x+dx, y+dy, z-1..z+1) are one run, whose start only moves forward as the vertices are taken in order.
+std::vector<std::uint32_t> placesOf(std::span<const dvec3> points, std::span<const std::uint32_t> used, double radius) {
+  std::vector<std::pair<Cell, std::uint32_t>> sorted;
+  sorted.reserve(used.size());
+  for (std::uint32_t v : used) sorted.emplace_back(cellOf(points[v], radius), v);
+  std::sort(sorted.begin(), sorted.end());
+  UnionFind same(points.size());
+  std::array<std::size_t, 9> runStart{};
+  for (std::size_t i = 0; i < sorted.size(); ++i) {
+    const auto& [cell, v] = sorted[i];
+    std::size_t k = 0;
+    for (std::int64_t dx = -1; dx <= 1; ++dx)
+      for (std::int64_t dy = -1; dy <= 1; ++dy) {
+        const Cell first{cell[0] + dx, cell[1] + dy, cell[2] - 1}, last{cell[0] + dx, cell[1] + dy, cell[2] + 1};
+        std::size_t& j = runStart[k++];
+        while (j < sorted.size() && sorted[j].first < first) ++j;
+        // Each pair once: the earlier vertex in the order is compared with the later.
+        for (std::size_t m = j; m < i && sorted[m].first <= last; ++m)
+          if (glm::length(points[sorted[m].second] - points[v]) <= radius) same.unite(sorted[m].second, v);
+      }
+  }
+  std::vector<std::uint32_t> place(points.size());
+  for (std::uint32_t v : used) place[v] = same.find(v);
+  return place;
+}
 
 // Edges of one line that cancel along it also meet end to end: wherever the runs along a line
 // start or stop, another run must stop or start at the same place for the sum to stay zero. So

@@ -20,6 +20,7 @@
 #include <converter/mesh_size.hpp>
 #include <converter/plane_fit.hpp>
 #include <converter/share_axes.hpp>
+#include <converter/sheets.hpp>
 #include <converter/wings.hpp>
 #include <nut/mesh_export.hpp>
 #include <nut/png_io.hpp>
@@ -352,7 +353,7 @@ Status convertInFrame(const TriangleMesh& mesh, const TriangleMesh* enclosing, c
   std::string lastError;
   for (int coarser = 0; coarser < kCoarserAttempts; ++coarser) {
     SolidOptions solidOptions = options.solid;
-    solidOptions.closedSurface = report.check.closedSurface;
+    solidOptions.closedSurface = report.closedSurface();
     solidOptions.enclosing = enclosing;
     solidOptions.progress = [&](double f) { progress("solid", f); };
     if (coarser > 0) solidOptions.partialWedges = false;
@@ -385,10 +386,12 @@ Status convertInFrame(const TriangleMesh& mesh, const TriangleMesh* enclosing, c
     report.solid = grid->stats;
     const SolidStats& s = grid->stats;
     report.insideTest =
-        enclosing ? "generalized winding number of the whole building at cell centres (the building converted in two parts)"
-        : report.check.closedSurface
+        enclosing
+            ? "generalized winding number of the whole building at cell centres (the building converted in two parts)"
+        : report.closedSurface()
             ? "crossings counted along the lines of cell centres (closed surface, T-junctions matched); generalized "
-              "winding number on " + std::to_string(s.windingColumns) + " of " + std::to_string(s.columns) + " lines"
+              "winding number on " +
+                  std::to_string(s.windingColumns) + " of " + std::to_string(s.columns) + " lines"
             : "generalized winding number at cell centres (open surface: no closed surface needed)";
     out.originM = report.originM = grid->originM;
     const std::string suffix = part + (coarser == 0 ? "" : " (coarser " + std::to_string(coarser) + ")");
@@ -511,30 +514,12 @@ Status convertBuilding(const TriangleMesh& mesh, const ConvertOptions& options, 
   return Ok{};
 }
 
-}  // namespace
-
-double ConvertReport::seconds() const {
-  double sum = 0;
-  for (const PhaseTiming& p : phases) sum += p.seconds;
-  return sum;
-}
-
-Result<Conversion> convertMesh(TriangleMesh mesh, const ConvertOptions& options) {
-  Conversion out;
+// Converts a checked mesh (out.report.check set) in the frame of its dominant orientation, and
+// adds `sheets` (world frame) to its complementary mesh.
+Status convertChecked(TriangleMesh mesh, const TriangleMesh* sheets, const ConvertOptions& options, Conversion& out,
+                      const Progress& progress) {
   ConvertReport& report = out.report;
-  report.name = mesh.name;
-  report.inputTriangles = mesh.triangles.size();
   Phases phases(report.phases);
-  const Progress progress = [&](std::string_view phase, double fraction) {
-    if (options.progress) options.progress(phase, fraction);
-  };
-
-  progress("check", 0);
-  report.check = checkAndRepair(mesh);
-  if (mesh.triangles.empty())
-    return Error{mesh.name + ": nothing to convert: all " + std::to_string(report.inputTriangles) + " faces are degenerate"};
-  phases.end("check");
-
   // A building turned about the vertical is converted in its own frame (align.hpp); a dominant
   // orientation within the angle tolerance of the axes needs no turn.
   const std::uint16_t yaw = dominantYaw(mesh, options.solid.angleToleranceDeg);
@@ -553,7 +538,7 @@ Result<Conversion> convertMesh(TriangleMesh mesh, const ConvertOptions& options)
   }
   report.yawApplied = frame.has_value();
 
-  if (Status s = convertBuilding(mesh, options, out, phases, progress); !s) return s.error();
+  if (Status s = convertBuilding(mesh, options, out, phases, progress); !s) return s;
   if (frame) {
     // Back to the world: the hierarchy inside a yaw redirection, compiled again, and the
     // complementary mesh turned back.
@@ -565,8 +550,75 @@ Result<Conversion> convertMesh(TriangleMesh mesh, const ConvertOptions& options)
     toWorldFrame(out.complement, *frame);
     phases.end("align");
   }
+  if (sheets) {
+    auto complement = mergeMeshes(std::vector<const TriangleMesh*>{&out.complement, sheets}, out.complement.name);
+    if (!complement) return Error{mesh.name + ": " + complement.error().message};
+    out.complement = std::move(*complement);
+    report.solid.areaM2 += sheets->area();
+    report.solid.complementAreaM2 += sheets->area();
+  }
   report.complementTriangles = out.complement.triangles.size();
-  return out;
+  return Ok{};
+}
+
+}  // namespace
+
+double ConvertReport::seconds() const {
+  double sum = 0;
+  for (const PhaseTiming& p : phases) sum += p.seconds;
+  return sum;
+}
+
+Result<Conversion> convertMesh(TriangleMesh mesh, const ConvertOptions& options) {
+  Conversion out;
+  ConvertReport& report = out.report;
+  report.name = mesh.name;
+  report.inputTriangles = mesh.triangles.size();
+  const Progress progress = [&](std::string_view phase, double fraction) {
+    if (options.progress) options.progress(phase, fraction);
+  };
+  {
+    Phases phases(report.phases);
+    progress("check", 0);
+    report.check = checkAndRepair(mesh);
+    if (mesh.triangles.empty())
+      return Error{mesh.name + ": nothing to convert: all " + std::to_string(report.inputTriangles) +
+                   " faces are degenerate"};
+    phases.end("check");
+  }
+  // An open mesh may be a closed body with sheets hanging off it (sheets.hpp): then it is also
+  // converted as the body, the sheets drawn as mesh, and that is kept when its files are smaller.
+  std::optional<SheetSplit> split;
+  if (options.detachSheets && !report.check.closedSurface) {
+    Phases phases(report.phases);
+    progress("sheets", 0);
+    split = detachSheets(mesh, options.solid.toleranceM);
+    phases.end("sheets");
+  }
+  const ConvertReport checked = report;
+  if (Status s = convertChecked(std::move(mesh), nullptr, options, out, progress); !s) return s.error();
+  if (!split) return out;
+
+  Conversion body;
+  body.report = checked;
+  SheetReport& sheets = body.report.sheets;
+  sheets.found = sheets.applied = true;
+  sheets.triangles = split->sheets.triangles.size();
+  sheets.areaM2 = split->sheets.area();
+  sheets.cutTriangles = split->cutTriangles;
+  sheets.hiddenTriangles = split->hiddenTriangles;
+  if (Status s = convertChecked(std::move(split->body), &split->sheets, options, body, progress); !s) {
+    report.warnings.push_back("the mesh was not converted without its open sheets: " + s.error().message);
+    return out;
+  }
+  sheets.bytesWithout = bytesOnDisk(out);
+  sheets.bytesWith = bytesOnDisk(body);
+  sheets.applied = sheets.bytesWith < sheets.bytesWithout;
+  if (!sheets.applied) {
+    report.sheets = sheets;
+    return out;
+  }
+  return body;
 }
 
 HniText hniText(const Conversion& conversion) {
@@ -636,78 +688,91 @@ std::string reportJson(const ConvertReport& r) {
   }
   const SolidStats& s = r.solid;
   const double area = s.areaM2 > 0 ? s.areaM2 : 1;
-  const json j = {
-      {"name", r.name},
-      {"origin_m", vec3Json(r.originM)},
-      {"seconds", r.seconds()},
-      {"phases_seconds", phases},
-      {"input", {{"triangles", r.inputTriangles},
-                 {"vertices", r.check.vertices},
-                 {"degenerate_removed", r.check.degenerate},
-                 {"slivers", r.check.slivers},
-                 {"duplicate_faces", r.check.duplicateFaces},
-                 {"boundary_edges", r.check.boundaryEdges},
-                 {"non_manifold_edges", r.check.nonManifoldEdges},
-                 {"inconsistent_edges", r.check.inconsistentEdges},
-                 {"pieces", r.check.components},
-                 {"flipped_faces", r.check.flippedTriangles},
-                 {"closed", r.check.closed()},
-                 {"closed_surface", r.check.closedSurface}}},
-      {"inside_test", r.insideTest},
-      {"alignment", {{"yaw_deg", r.yawDeg}, {"applied", r.yawApplied}}},
-      {"wing", wingJson(r.wing)},
-      {"grid", {{"planes", s.planes},
-                {"cells", s.cells},
-                {"sweep_axis", std::string(1, "xyz"[s.sweepAxis])},
-                {"slopes", s.slopes},
-                {"slopes_as_wedges", s.slopesAsWedges},
-                {"slope_boundaries", s.slopeBoundaries},
-                {"material_boundaries", s.materialBoundaries},
-                {"trimmed_cells", s.trimmedCells},
-                {"trim_boundaries", s.trimBoundaries},
-                {"plane_boundaries", s.planeBoundaries},
-                {"solid_cells", s.solidCells},
-                {"wedge_cells", s.wedgeCells},
-                {"quadric_cells", s.quadricCells},
-                {"sphere_octant_cells", s.sphereOctantCells},
-                {"pyramid_cells", s.pyramidCells},
-                {"plane_cells", s.planeCells},
-                {"two_plane_cells", s.twoPlaneCells},
-                {"builds", s.gridBuilds},
-                {"builds_classified", s.gridsClassified},
-                {"winding_columns", s.windingColumns},
-                {"winding_evaluations", s.windingEvaluations},
-                {"ambiguous_cells", s.ambiguousCells}}},
-      {"surface", {{"area_m2", s.areaM2},
-                   {"nut_m2", s.nutAreaM2},
-                   {"complement_m2", s.complementAreaM2},
-                   {"hidden_m2", s.hiddenAreaM2},
-                   {"drawn_twice_m2", s.drawnTwiceAreaM2},
-                   {"nut_fraction", s.nutAreaM2 / area},
-                   {"complement_fraction", s.complementAreaM2 / area},
-                   {"complement_triangles", r.complementTriangles}}},
-      {"blocks", {{"mode", r.blockMode},
-                  {"axis_order_rotation", r.axisOrderCube},
-                  {"hidden_cells_filled", r.hiddenCellsFilled},
-                  {"variants", variants},
-                  {"found", found},
-                  {"split_for_limits", r.splitBlocks},
-                  {"axes_shared", r.sharedAxes},
-                  {"cells_before", r.blocks.cellsBefore},
-                  {"cells_after", r.blocks.cellsAfter},
-                  {"bytes_estimate_before", r.blocks.bytesBefore},
-                  {"bytes_estimate_after", r.blocks.bytesAfter}}},
-      {"hni", {{"blocks", r.hni.blocks},
-               {"cells", r.hni.cells},
-               {"redirections", r.hni.redirections},
-               {"materials", r.hni.materials},
-               {"width", r.hni.width},
-               {"height", r.hni.height},
-               {"bytes_raw", r.hni.bytesRaw},
-               {"bytes_png", r.pngBytes},
-               {"waste_pct", r.hni.wastePct},
-               {"dag_depth", r.hni.dagDepth}}},
-      {"warnings", r.warnings}};
+  const json j = {{"name", r.name},
+                  {"origin_m", vec3Json(r.originM)},
+                  {"seconds", r.seconds()},
+                  {"phases_seconds", phases},
+                  {"input",
+                   {{"triangles", r.inputTriangles},
+                    {"vertices", r.check.vertices},
+                    {"degenerate_removed", r.check.degenerate},
+                    {"slivers", r.check.slivers},
+                    {"duplicate_faces", r.check.duplicateFaces},
+                    {"boundary_edges", r.check.boundaryEdges},
+                    {"non_manifold_edges", r.check.nonManifoldEdges},
+                    {"inconsistent_edges", r.check.inconsistentEdges},
+                    {"pieces", r.check.components},
+                    {"flipped_faces", r.check.flippedTriangles},
+                    {"closed", r.check.closed()},
+                    {"closed_surface", r.check.closedSurface}}},
+                  {"sheets",
+                   {{"found", r.sheets.found},
+                    {"applied", r.sheets.applied},
+                    {"triangles", r.sheets.triangles},
+                    {"area_m2", r.sheets.areaM2},
+                    {"cut_triangles", r.sheets.cutTriangles},
+                    {"hidden_triangles", r.sheets.hiddenTriangles},
+                    {"bytes_with", r.sheets.bytesWith},
+                    {"bytes_without", r.sheets.bytesWithout}}},
+                  {"inside_test", r.insideTest},
+                  {"alignment", {{"yaw_deg", r.yawDeg}, {"applied", r.yawApplied}}},
+                  {"wing", wingJson(r.wing)},
+                  {"grid",
+                   {{"planes", s.planes},
+                    {"cells", s.cells},
+                    {"sweep_axis", std::string(1, "xyz"[s.sweepAxis])},
+                    {"slopes", s.slopes},
+                    {"slopes_as_wedges", s.slopesAsWedges},
+                    {"slope_boundaries", s.slopeBoundaries},
+                    {"material_boundaries", s.materialBoundaries},
+                    {"trimmed_cells", s.trimmedCells},
+                    {"trim_boundaries", s.trimBoundaries},
+                    {"plane_boundaries", s.planeBoundaries},
+                    {"solid_cells", s.solidCells},
+                    {"wedge_cells", s.wedgeCells},
+                    {"quadric_cells", s.quadricCells},
+                    {"sphere_octant_cells", s.sphereOctantCells},
+                    {"pyramid_cells", s.pyramidCells},
+                    {"plane_cells", s.planeCells},
+                    {"two_plane_cells", s.twoPlaneCells},
+                    {"builds", s.gridBuilds},
+                    {"builds_classified", s.gridsClassified},
+                    {"winding_columns", s.windingColumns},
+                    {"winding_evaluations", s.windingEvaluations},
+                    {"ambiguous_cells", s.ambiguousCells}}},
+                  {"surface",
+                   {{"area_m2", s.areaM2},
+                    {"nut_m2", s.nutAreaM2},
+                    {"complement_m2", s.complementAreaM2},
+                    {"hidden_m2", s.hiddenAreaM2},
+                    {"drawn_twice_m2", s.drawnTwiceAreaM2},
+                    {"nut_fraction", s.nutAreaM2 / area},
+                    {"complement_fraction", s.complementAreaM2 / area},
+                    {"complement_triangles", r.complementTriangles}}},
+                  {"blocks",
+                   {{"mode", r.blockMode},
+                    {"axis_order_rotation", r.axisOrderCube},
+                    {"hidden_cells_filled", r.hiddenCellsFilled},
+                    {"variants", variants},
+                    {"found", found},
+                    {"split_for_limits", r.splitBlocks},
+                    {"axes_shared", r.sharedAxes},
+                    {"cells_before", r.blocks.cellsBefore},
+                    {"cells_after", r.blocks.cellsAfter},
+                    {"bytes_estimate_before", r.blocks.bytesBefore},
+                    {"bytes_estimate_after", r.blocks.bytesAfter}}},
+                  {"hni",
+                   {{"blocks", r.hni.blocks},
+                    {"cells", r.hni.cells},
+                    {"redirections", r.hni.redirections},
+                    {"materials", r.hni.materials},
+                    {"width", r.hni.width},
+                    {"height", r.hni.height},
+                    {"bytes_raw", r.hni.bytesRaw},
+                    {"bytes_png", r.pngBytes},
+                    {"waste_pct", r.hni.wastePct},
+                    {"dag_depth", r.hni.dagDepth}}},
+                  {"warnings", r.warnings}};
   return j.dump(2) + "\n";
 }
 

@@ -40,6 +40,10 @@ struct ConvertOptions {
   // Convert a wing turned against the rest of the building in a frame of its own, when that
   // makes the files smaller (wings.hpp). Not with manual blocks.
   bool turnedWings = true;
+  // Convert an open mesh that is a closed body with sheets hanging off it (overhanging roofs) also
+  // as the body, the sheets drawn as complementary mesh, and keep that when its files are smaller
+  // (sheets.hpp).
+  bool detachSheets = true;
   // Progress of the current phase: its name and the fraction done (0..1). Called from the
   // calling thread only.
   std::function<void(std::string_view phase, double fraction)> progress;
@@ -76,10 +80,25 @@ struct WingReport {
   int blocks = 0;                   // the wing's blocks, when applied
 };
 
+// Sheets peeled off an open mesh's closed body (sheets.hpp), when there were any.
+struct SheetReport {
+  bool found = false;
+  bool applied = false;       // converted as the body: the files were smaller
+  std::size_t triangles = 0;  // the sheets' triangles, drawn as complementary mesh
+  double areaM2 = 0;
+  std::size_t cutTriangles = 0;     // input triangles cut along a free edge lying in them
+  std::size_t hiddenTriangles = 0;  // inside the body: dropped
+  std::uint64_t bytesWith = 0;      // PNG + gzipped complement GLB, converted as the body
+  std::uint64_t bytesWithout = 0;   // the same, converted as it is
+};
+
 struct ConvertReport {
   std::string name;
   std::size_t inputTriangles = 0;
-  MeshCheck check;
+  MeshCheck check;  // of the input
+  SheetReport sheets;
+  // Converted as a closed surface: the input, or the body left once sheets were peeled off.
+  bool closedSurface() const { return check.closedSurface || sheets.applied; }
   std::string insideTest;         // how occupancy was decided, in words
   double yawDeg = 0;              // the building's dominant orientation about +y (align.hpp)
   bool yawApplied = false;        // converted in that frame and wrapped in a yaw redirection
