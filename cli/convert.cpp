@@ -36,10 +36,11 @@ struct ConvertCliOptions {
   double toleranceM = 0.01;
   double angleDeg = 1.0;
   bool zUp = false, quiet = false, noAutoBlocks = false, noWedges = false, noAlign = false, noAxisOrder = false,
-       noWings = false, noSheets = false, planeCells = false, packAtlases = false;
+       noWings = false, planeCells = false, packAtlases = false;
   std::vector<std::string> blocks;
   int threads = 0;
   std::string pngEffort = "smallest";
+  std::string prefer = "files";
   std::string complementFormat = "glb";  // of the complements written into a folder
 };
 
@@ -118,7 +119,8 @@ Result<converter::ConvertOptions> convertOptionsOf(const ConvertCliOptions& o) {
   options.solid.threads = o.threads;
   options.alignYaw = !o.noAlign;
   options.turnedWings = !o.noWings;
-  options.detachSheets = !o.noSheets;
+  options.objective = o.prefer == "surface" ? converter::ConvertOptions::Objective::MostSurface
+                                            : converter::ConvertOptions::Objective::SmallestFiles;
   options.blocks.automatic = !o.noAutoBlocks;
   options.axisOrder = !o.noAxisOrder;
   for (const std::string& text : o.blocks) {
@@ -442,9 +444,12 @@ void addConvertCommand(CLI::App& app, int& exitCode) {
   cmd->add_flag("--no-wings", o->noWings,
                 "Do not convert a wing turned against the rest of the building in a frame of its own (its walls then "
                 "go to the complementary mesh)");
-  cmd->add_flag("--no-sheets", o->noSheets,
-                "Do not also convert an open mesh as the closed body left once sheets hanging off it (roofs "
-                "overhanging their walls) are peeled off; that is kept when its files are smaller");
+  cmd->add_option("--prefer", o->prefer,
+                  "Where a building is converted two ways (plane cells or not, a wing in its own frame or not), keep "
+                  "the smaller files, or the larger share of the surface in the HNI; surface also converts an open "
+                  "mesh as the body left once sheets hanging off it (roofs overhanging their walls) are peeled off")
+      ->check(CLI::IsMember({"files", "surface"}))
+      ->capture_default_str();
   cmd->add_flag("--pack-atlases", o->packAtlases,
                 "With -o FOLDER: write one HNI and one complementary mesh per district of 256 m instead of one per "
                 "building: the buildings' blocks merged, equal blocks stored once, fewer and smaller files");

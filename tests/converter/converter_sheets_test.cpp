@@ -8,6 +8,8 @@
 #include <gtest/gtest.h>
 
 #include <array>
+#include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <string>
@@ -87,6 +89,7 @@ TEST(Sheets, AnOverhangingGableRoofLeavesAClosedHouse) {
   EXPECT_NEAR(split->sheets.area(), 2 * (pitch - overWalls), 1e-6);
   const double walls = 2 * kLength * kEaveHeight + 2 * (kDepth * kEaveHeight + kDepth * kRise / 2);
   EXPECT_NEAR(split->body.area(), walls + kLength * kDepth + 2 * overWalls, 1e-6);
+  EXPECT_TRUE(split->closed);
   EXPECT_TRUE(split->bodyCheck.closedSurface) << split->bodyCheck.summary();
   EXPECT_EQ(split->hiddenTriangles, 0u);
   for (std::uint16_t m : split->sheets.triangleMaterial) EXPECT_EQ(m, kRoof);
@@ -144,12 +147,11 @@ TEST(Sheets, TheZurichHousesOverhangsAreItsSheets) {
   EXPECT_NEAR(split->sheets.area(), strips, 0.02 * strips);
   // The roof under the dormer is inside the body and the dormer on it: dropped, not drawn.
   EXPECT_GT(split->hiddenTriangles, 0u);
+  EXPECT_TRUE(split->closed);
   EXPECT_NEAR(split->body.area() + split->sheets.area(), mesh.area(), 0.02 * mesh.area());
 
-  ConvertOptions options;
-  options.detachSheets = false;
-  const Conversion open = testing::convertOrFail(source, options);
-  const Conversion body = testing::convertOrFail(split->body, options);
+  const Conversion open = testing::convertOrFail(source);
+  const Conversion body = testing::convertOrFail(split->body);
   EXPECT_LT(testing::nutFraction(open), 0.8);
   EXPECT_GT(testing::nutFraction(body), 0.95);
 }
@@ -159,21 +161,64 @@ std::uint64_t filesBytes(const Conversion& c) {
          (c.complement.triangles.empty() ? 0 : measureMesh(c.complement).glbGzipBytes);
 }
 
-TEST(Sheets, TheConversionKeepsTheSmallerFiles) {
+// For the most surface, the Zurich house is converted as its body; for the smallest files, as it
+// is, without trying the body.
+TEST(Sheets, TheMostSurfaceConvertsTheBody) {
   const TriangleMesh source = zurichHouse();
-  const Conversion kept = testing::convertOrFail(source);
+  ConvertOptions most;
+  most.objective = ConvertOptions::Objective::MostSurface;
+  const Conversion kept = testing::convertOrFail(source, most);
   const SheetReport& sheets = kept.report.sheets;
   ASSERT_TRUE(sheets.found);
-  EXPECT_GT(sheets.bytesWith, 0u);
-  EXPECT_GT(sheets.bytesWithout, 0u);
-  EXPECT_EQ(sheets.applied, sheets.bytesWith < sheets.bytesWithout);
-  EXPECT_EQ(filesBytes(kept), std::min(sheets.bytesWith, sheets.bytesWithout));
-  ConvertOptions options;
-  options.detachSheets = false;
-  const Conversion open = testing::convertOrFail(source, options);
-  EXPECT_FALSE(open.report.sheets.found);
-  EXPECT_EQ(filesBytes(open), sheets.bytesWithout);
+  EXPECT_TRUE(sheets.applied);
+  EXPECT_TRUE(sheets.bodyClosed);
+  EXPECT_GT(sheets.nutShareWith, sheets.nutShareWithout + 0.15);
+  EXPECT_NEAR(testing::nutFraction(kept), sheets.nutShareWith, 1e-9);
+  EXPECT_EQ(filesBytes(kept), sheets.bytesWith);
+  const Conversion smallest = testing::convertOrFail(source);
+  EXPECT_FALSE(smallest.report.sheets.found);
+  EXPECT_EQ(filesBytes(smallest), sheets.bytesWithout);
+  EXPECT_NEAR(testing::nutFraction(smallest), sheets.nutShareWithout, 1e-9);
 }
+
+// The Zurich fixtures (tests/data) for the most surface, with and without plane cells: each takes
+// at least the surface and at most the files' bytes the smallest files do not, and renders like
+// its source (at least 99 % of the pixels of every view within 8/255; diff images in the test
+// output folder, converter_sheets/, when not).
+struct Fixture {
+  const char* file;
+  bool planeCells;
+};
+
+class ObjectiveOnZurich : public ::testing::TestWithParam<Fixture> {};
+
+TEST_P(ObjectiveOnZurich, EachObjectiveWinsItsMeasureAndRendersLikeTheSource) {
+  const std::string path = std::string(NUT_SOURCE_DIR) + "/tests/data/" + GetParam().file;
+  auto obj = scene::readObj(path);
+  ASSERT_TRUE(obj.ok()) << obj.error().message;
+  const TriangleMesh source = mergeMeshes(obj->objects, "source").value();
+  ConvertOptions files, most;
+  files.solid.planeCells = most.solid.planeCells = GetParam().planeCells;
+  most.objective = ConvertOptions::Objective::MostSurface;
+  const Conversion smallest = testing::convertOrFail(source, files);
+  const Conversion surface = testing::convertOrFail(source, most);
+  EXPECT_GE(testing::nutFraction(surface), testing::nutFraction(smallest) - 1e-3);
+  EXPECT_LE(filesBytes(smallest), filesBytes(surface));
+  const std::string stem = testing::outputDir("converter_sheets") + "/" + std::filesystem::path(path).stem().string() +
+                           (GetParam().planeCells ? "_planes" : "");
+  const testing::Fidelity f = testing::measureFidelity(source, {&surface}, stem, 99.0);
+  std::printf("%s%s: NUT %.1f %% (smallest files %.1f %%), %ju B (%ju B); worst view %.2f %% within 8/255\n",
+              GetParam().file, GetParam().planeCells ? " (plane cells)" : "", 100 * testing::nutFraction(surface),
+              100 * testing::nutFraction(smallest), static_cast<std::uintmax_t>(filesBytes(surface)),
+              static_cast<std::uintmax_t>(filesBytes(smallest)), f.worstWithinPct);
+  EXPECT_GE(f.worstWithinPct, 99.0) << "see " << stem << ".view*.diff.png";
+}
+
+INSTANTIATE_TEST_SUITE_P(Fixtures, ObjectiveOnZurich,
+                         ::testing::Values(Fixture{"zurich_house.obj", false}, Fixture{"zurich_house.obj", true},
+                                           Fixture{"zurich_gable.obj", false}, Fixture{"zurich_gable.obj", true},
+                                           Fixture{"zurich_dormers.obj", false}, Fixture{"zurich_dormers.obj", true},
+                                           Fixture{"zurich_roof_given_up.obj", true}));
 
 }  // namespace
 }  // namespace nut::converter

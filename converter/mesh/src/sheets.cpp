@@ -61,11 +61,30 @@ std::vector<std::uint32_t> weldPlaces(Soup& s, double tol) {
     const Triangle welded{place[s.triangles[t][0]], place[s.triangles[t][1]], place[s.triangles[t][2]]};
     if (welded[0] == welded[1] || welded[1] == welded[2] || welded[0] == welded[2]) continue;
     if (twiceArea(out, welded) <= kNoArea) continue;
-    out.add(welded, s, t);
-    out.origin.back() = s.origin[t];  // welding moves no face: each keeps its origin
+    out.triangles.push_back(welded);  // welding moves no face: each keeps its origin
+    out.material.push_back(s.material[t]);
+    out.origin.push_back(s.origin[t]);
   }
   s = std::move(out);
   return place;
+}
+
+// Takes out of `s` the triangles narrower than `tol` (a corner within it of the opposite edge):
+// a sliver's edges run along one line both ways, and a polygon triangulated with a corner on a
+// straight edge has one. They carry no surface worth a cell and are drawn as mesh.
+Soup takeSlivers(Soup& s, double tol) {
+  Soup slivers{s.points, {}, {}, {}}, rest{s.points, {}, {}, {}};
+  for (std::size_t t = 0; t < s.triangles.size(); ++t) {
+    const Triangle& tri = s.triangles[t];
+    double longest = 0;
+    for (int k = 0; k < 3; ++k) longest = std::max(longest, glm::length(s.points[tri[(k + 1) % 3]] - s.points[tri[k]]));
+    Soup& to = twiceArea(s, tri) <= tol * longest ? slivers : rest;
+    to.triangles.push_back(tri);
+    to.material.push_back(s.material[t]);
+    to.origin.push_back(s.origin[t]);
+  }
+  s = std::move(rest);
+  return slivers;
 }
 
 // The vertices of the soup other than the triangle's corners a, b and c within `tol` of its edge
@@ -241,8 +260,19 @@ Soup cutAlongFreeEdges(const Soup& s, const Soup& conformed, double tol, std::si
       pieces = std::move(split);
     }
     cutFaces += pieces.size() > 1;
-    for (const auto& piece : pieces)
-      for (std::size_t k = 1; k + 1 < piece.size(); ++k) out.add({piece[0], piece[k], piece[k + 1]}, s, i);
+    for (const auto& piece : pieces) {
+      // A corner on the straight line between its neighbours would make a fan triangle without
+      // width; the neighbouring faces' edges meet it again once the cut faces are conformed.
+      std::vector<std::uint32_t> corners;
+      for (std::size_t k = 0; k < piece.size(); ++k) {
+        const dvec3 &before = out.points[piece[(k + piece.size() - 1) % piece.size()]], &here = out.points[piece[k]],
+                    &after = out.points[piece[(k + 1) % piece.size()]];
+        const double base = glm::length(after - before);
+        if (base > 0 && glm::length(glm::cross(here - before, after - before)) / base > kSamePlaceM)
+          corners.push_back(piece[k]);
+      }
+      for (std::size_t k = 1; k + 1 < corners.size(); ++k) out.add({corners[0], corners[k], corners[k + 1]}, s, i);
+    }
   }
   return out;
 }
@@ -317,6 +347,52 @@ void dropInnerPieces(const Soup& s, std::vector<std::uint8_t>& kept) {
   for (std::uint32_t t : inner) kept[t] = 2;
 }
 
+// Which kept faces (kept[t] == 1) to turn over so that each piece of them runs every edge it
+// shares one way and its other face the other, and faces outwards (a positive volume). Pieces
+// that were apart before welding (a wing's walls and the body's) were oriented apart.
+std::vector<std::uint8_t> orientation(const Soup& s, const std::vector<std::uint8_t>& kept) {
+  const std::size_t n = s.triangles.size();
+  std::unordered_map<std::uint64_t, std::vector<std::uint32_t>> users;
+  for (std::uint32_t t = 0; t < n; ++t)
+    if (kept[t] == 1)
+      for (int k = 0; k < 3; ++k) users[edgeKey(s.triangles[t][k], s.triangles[t][(k + 1) % 3])].push_back(t);
+  // Whether t runs a -> b.
+  const auto runs = [&](std::uint32_t t, std::uint32_t a, std::uint32_t b) {
+    for (int k = 0; k < 3; ++k)
+      if (s.triangles[t][k] == a && s.triangles[t][(k + 1) % 3] == b) return true;
+    return false;
+  };
+  std::vector<std::uint8_t> flip(n, 0), seen(n, 0);
+  for (std::uint32_t start = 0; start < n; ++start) {
+    if (kept[start] != 1 || seen[start]) continue;
+    std::vector<std::uint32_t> piece{start};
+    seen[start] = 1;
+    double volume = 0;
+    for (std::size_t i = 0; i < piece.size(); ++i) {
+      const std::uint32_t t = piece[i];
+      const Triangle& tri = s.triangles[t];
+      const double v = glm::dot(s.points[tri[0]], glm::cross(s.points[tri[1]], s.points[tri[2]]));
+      volume += flip[t] ? -v : v;
+      for (int k = 0; k < 3; ++k) {
+        const std::uint32_t a = tri[k], b = tri[(k + 1) % 3];
+        const auto& shared = users[edgeKey(a, b)];
+        if (shared.size() != 2) continue;
+        const std::uint32_t other = shared[0] == t ? shared[1] : shared[0];
+        if (seen[other]) continue;
+        seen[other] = 1;
+        // t runs a -> b once turned by flip[t]; the other must run it b -> a.
+        const bool tForward = runs(t, a, b) != static_cast<bool>(flip[t]);
+        const bool otherForward = runs(other, a, b);
+        flip[other] = otherForward == tForward;
+        piece.push_back(other);
+      }
+    }
+    if (volume < 0)
+      for (std::uint32_t t : piece) flip[t] = !flip[t];
+  }
+  return flip;
+}
+
 // Whether the kept faces (kept[t] == 1) close: every edge they use is run once each way.
 bool closes(const Soup& s, const std::vector<std::uint8_t>& kept) {
   std::unordered_map<std::uint64_t, int> runs;  // +1 for a -> b with a < b, -1 the other way
@@ -335,18 +411,22 @@ bool closes(const Soup& s, const std::vector<std::uint8_t>& kept) {
 // The faces of `cut` that have `status`, as a mesh: a face of `base` all of whose parts (baseOf:
 // each cut face's face of base) have it is written whole, as it was. Both use cut's points.
 TriangleMesh meshOf(const Soup& base, const Soup& cut, const std::vector<std::uint32_t>& baseOf,
-                    const std::vector<std::uint8_t>& cutStatus, std::uint8_t status, const TriangleMesh& like) {
+                    const std::vector<std::uint8_t>& cutStatus, const std::vector<std::uint8_t>& cutFlip,
+                    std::uint8_t status, const TriangleMesh& like) {
   TriangleMesh mesh;
   mesh.name = like.name;
   mesh.materials = like.materials;
   mesh.materialNames = like.materialNames;
   std::vector<int> partsWith(base.triangles.size(), 0), parts(base.triangles.size(), 0);
+  std::vector<std::uint8_t> baseFlip(base.triangles.size(), 0);
   for (std::size_t t = 0; t < cut.triangles.size(); ++t) {
     ++parts[baseOf[t]];
     partsWith[baseOf[t]] += cutStatus[t] == status;
+    baseFlip[baseOf[t]] = cutFlip[t];  // a face's parts are one piece: they turn together
   }
   std::vector<std::int64_t> id(cut.points.size(), -1);
-  const auto write = [&](const Triangle& t, std::uint16_t material) {
+  const auto write = [&](Triangle t, std::uint16_t material, bool turn) {
+    if (turn) std::swap(t[1], t[2]);
     Triangle out{};
     for (int k = 0; k < 3; ++k) {
       std::int64_t& v = id[t[k]];
@@ -360,9 +440,10 @@ TriangleMesh meshOf(const Soup& base, const Soup& cut, const std::vector<std::ui
     mesh.triangleMaterial.push_back(material);
   };
   for (std::size_t t = 0; t < base.triangles.size(); ++t)
-    if (parts[t] > 0 && partsWith[t] == parts[t]) write(base.triangles[t], base.material[t]);
+    if (parts[t] > 0 && partsWith[t] == parts[t]) write(base.triangles[t], base.material[t], baseFlip[t]);
   for (std::size_t t = 0; t < cut.triangles.size(); ++t)
-    if (cutStatus[t] == status && partsWith[baseOf[t]] != parts[baseOf[t]]) write(cut.triangles[t], cut.material[t]);
+    if (cutStatus[t] == status && partsWith[baseOf[t]] != parts[baseOf[t]])
+      write(cut.triangles[t], cut.material[t], cutFlip[t]);
   return mesh;
 }
 
@@ -373,29 +454,44 @@ std::optional<SheetSplit> detachSheets(const TriangleMesh& mesh, double planeTol
   base.origin.resize(base.triangles.size());
   std::iota(base.origin.begin(), base.origin.end(), 0u);
   weldPlaces(base, planeToleranceM);
+  Soup slivers = takeSlivers(base, planeToleranceM);
   SheetSplit split;
   const Soup conformed = conform(base, planeToleranceM);
   Soup cut = cutAlongFreeEdges(conformed, conformed, planeToleranceM, split.cutTriangles);
   // The parts of two faces cut where they meet share the cut's end; faces written whole use the
   // same places.
   const std::vector<std::uint32_t> place = weldPlaces(cut, planeToleranceM);
-  for (Triangle& t : base.triangles)
-    for (std::uint32_t& v : t) v = place[v];
+  for (Soup* whole : {&base, &slivers})
+    for (Triangle& t : whole->triangles)
+      for (std::uint32_t& v : t) v = place[v];
   // The cut faces' edges are matched where they meet, the decision taken on that surface, and
   // each cut face takes the decision of its parts (its fan's inner edges join them in one piece).
-  const Soup joined = conform(cut, planeToleranceM);
+  Soup joined = conform(cut, planeToleranceM);
   std::vector<std::uint8_t> kept(joined.triangles.size(), 1);
   peel(joined, kept);
   dropInnerPieces(joined, kept);
-  if (std::all_of(kept.begin(), kept.end(), [](std::uint8_t k) { return k == 1; }) || !closes(joined, kept))
-    return std::nullopt;
+  const std::vector<std::uint8_t> flip = orientation(joined, kept);
+  for (std::size_t t = 0; t < joined.triangles.size(); ++t)
+    if (flip[t]) std::swap(joined.triangles[t][1], joined.triangles[t][2]);
+  if (std::all_of(kept.begin(), kept.end(), [](std::uint8_t k) { return k == 1; })) return std::nullopt;
+  split.closed = closes(joined, kept);
   std::vector<std::uint8_t> cutStatus(cut.triangles.size(), 1);
-  for (std::size_t t = 0; t < joined.triangles.size(); ++t) cutStatus[joined.origin[t]] = kept[t];
+  std::vector<std::uint8_t> cutFlip(cut.triangles.size(), 0);
+  for (std::size_t t = 0; t < joined.triangles.size(); ++t) {
+    cutStatus[joined.origin[t]] = kept[t];
+    cutFlip[joined.origin[t]] = flip[t];
+  }
   split.hiddenTriangles = static_cast<std::size_t>(std::count(cutStatus.begin(), cutStatus.end(), 2));
   std::vector<std::uint32_t> baseOf(cut.triangles.size());
   for (std::size_t t = 0; t < cut.triangles.size(); ++t) baseOf[t] = conformed.origin[cut.origin[t]];
-  split.body = meshOf(base, cut, baseOf, cutStatus, 1, mesh);
-  split.sheets = meshOf(base, cut, baseOf, cutStatus, 0, mesh);
+  split.body = meshOf(base, cut, baseOf, cutStatus, cutFlip, 1, mesh);
+  split.sheets = meshOf(base, cut, baseOf, cutStatus, cutFlip, 0, mesh);
+  for (std::size_t t = 0; t < slivers.triangles.size(); ++t) {
+    const auto first = static_cast<std::uint32_t>(split.sheets.positions.size());
+    for (std::uint32_t v : slivers.triangles[t]) split.sheets.positions.push_back(cut.points[v]);
+    split.sheets.triangles.push_back({first, first + 1, first + 2});
+    split.sheets.triangleMaterial.push_back(slivers.material[t]);
+  }
   if (split.body.triangles.empty() || split.sheets.area() > kMaxSheetShare * mesh.area()) return std::nullopt;
   split.bodyCheck = checkAndRepair(split.body);
   return split;

@@ -28,6 +28,13 @@
 namespace nut::converter {
 
 struct ConvertOptions {
+  // What the converter keeps where it converts a building two ways (plane cells or not, a wing in
+  // its own frame or not): the smaller files (PNG and gzipped complement GLB), or the larger share
+  // of the surface the HNI shows. MostSurface also converts an open mesh as the body under its
+  // sheets (sheets.hpp), the sheets drawn as complementary mesh: LoD2 roofs overhanging their
+  // walls then become cells, while the files grow (the mesh of a LoD2 house is small).
+  enum class Objective { SmallestFiles, MostSurface };
+  Objective objective = Objective::SmallestFiles;
   SolidOptions solid;
   BlockOptions blocks;
   CompileOptions compile;
@@ -40,10 +47,6 @@ struct ConvertOptions {
   // Convert a wing turned against the rest of the building in a frame of its own, when that
   // makes the files smaller (wings.hpp). Not with manual blocks.
   bool turnedWings = true;
-  // Convert an open mesh that is a closed body with sheets hanging off it (overhanging roofs) also
-  // as the body, the sheets drawn as complementary mesh, and keep that when its files are smaller
-  // (sheets.hpp).
-  bool detachSheets = true;
   // Progress of the current phase: its name and the fraction done (0..1). Called from the
   // calling thread only.
   std::function<void(std::string_view phase, double fraction)> progress;
@@ -69,7 +72,7 @@ struct VariantReport {
 // A wing turned against the rest of its building (wings.hpp), when one was found.
 struct WingReport {
   bool found = false;
-  bool applied = false;             // converted in its own frame: the files were smaller
+  bool applied = false;             // converted in its own frame: preferred (ConvertOptions::objective)
   double yawDeg = 0;                // its orientation in the building's frame
   int axis = 0;                     // the cut plane, axis = cutM in the building's frame
   double cutM = 0;
@@ -80,16 +83,19 @@ struct WingReport {
   int blocks = 0;                   // the wing's blocks, when applied
 };
 
-// Sheets peeled off an open mesh's closed body (sheets.hpp), when there were any.
+// Sheets peeled off an open mesh's body (sheets.hpp), when there were any.
 struct SheetReport {
   bool found = false;
-  bool applied = false;       // converted as the body: the files were smaller
+  bool applied = false;       // converted as the body: preferred (ConvertOptions::objective)
+  bool bodyClosed = false;    // the body is a closed surface (at the tolerance)
   std::size_t triangles = 0;  // the sheets' triangles, drawn as complementary mesh
   double areaM2 = 0;
   std::size_t cutTriangles = 0;     // input triangles cut along a free edge lying in them
   std::size_t hiddenTriangles = 0;  // inside the body: dropped
   std::uint64_t bytesWith = 0;      // PNG + gzipped complement GLB, converted as the body
   std::uint64_t bytesWithout = 0;   // the same, converted as it is
+  double nutShareWith = 0;          // the share of the surface the HNI shows, converted as the body
+  double nutShareWithout = 0;       // the same, converted as it is
 };
 
 struct ConvertReport {
@@ -98,7 +104,7 @@ struct ConvertReport {
   MeshCheck check;  // of the input
   SheetReport sheets;
   // Converted as a closed surface: the input, or the body left once sheets were peeled off.
-  bool closedSurface() const { return check.closedSurface || sheets.applied; }
+  bool closedSurface() const { return check.closedSurface || (sheets.applied && sheets.bodyClosed); }
   std::string insideTest;         // how occupancy was decided, in words
   double yawDeg = 0;              // the building's dominant orientation about +y (align.hpp)
   bool yawApplied = false;        // converted in that frame and wrapped in a yaw redirection
