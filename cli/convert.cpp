@@ -41,6 +41,7 @@ struct ConvertCliOptions {
   int threads = 0;
   std::string pngEffort = "smallest";
   std::string prefer = "files";
+  double districtSideM = converter::kDistrictSideM;
   std::string complementFormat = "glb";  // of the complements written into a folder
 };
 
@@ -287,8 +288,7 @@ Result<std::vector<WrittenDistrict>> writeDistricts(const ConvertCliOptions& o,
   // district wherever it lies.
   glm::dvec2 corner(INFINITY);
   for (const WorldBox& box : boxes) corner = glm::min(corner, glm::dvec2(box.min.x, box.min.z));
-  const std::vector<std::vector<std::size_t>> groups =
-      converter::districtGroups(boxes, converter::kDistrictSideM, corner);
+  const std::vector<std::vector<std::size_t>> groups = converter::districtGroups(boxes, o.districtSideM, corner);
   std::vector<std::vector<WrittenDistrict>> written(groups.size());
   std::vector<Status> statuses(groups.size(), Ok{});
   std::size_t finished = 0;
@@ -450,9 +450,15 @@ void addConvertCommand(CLI::App& app, int& exitCode) {
                   "mesh as the body left once sheets hanging off it (roofs overhanging their walls) are peeled off")
       ->check(CLI::IsMember({"files", "surface"}))
       ->capture_default_str();
-  cmd->add_flag("--pack-atlases", o->packAtlases,
-                "With -o FOLDER: write one HNI and one complementary mesh per district of 256 m instead of one per "
-                "building: the buildings' blocks merged, equal blocks stored once, fewer and smaller files");
+  cmd->add_flag(
+      "--pack-atlases", o->packAtlases,
+      "With -o FOLDER: write one HNI and one complementary mesh per district (--district-size) instead of one per "
+      "building: the buildings' blocks merged, equal blocks stored once, fewer and smaller files");
+  cmd->add_option("--district-size", o->districtSideM,
+                  "With --pack-atlases: the side of a district's square on the ground, in metres (a file of buildings "
+                  "far apart packs into fewer files with larger squares)")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
   cmd->add_option("--block", o->blocks,
                   "Extract this box of cells as a block, x0,y0,z0:x1,y1,z1 in world metres (repeatable)");
   cmd->add_option(

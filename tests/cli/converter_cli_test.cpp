@@ -12,6 +12,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <sstream>
 #include <string>
 
 #include <nlohmann/json.hpp>
@@ -452,6 +453,64 @@ TEST(ConvertCli, PackAtlasesWritesADistrictHniAndComplementAndRendersLikeTheSour
   std::printf("within 8/255 of the source: one HNI per building %.3f %%, districts %.3f %%\n", one, both);
   EXPECT_GE(both, 99.5);
   EXPECT_GE(both, one - 0.1);
+}
+
+// --district-size: two Zurich houses (tests/data/zurich_house.obj, its roof overhanging as a
+// sheet the complementary mesh draws) 5 km apart are two districts of the default 256 m and one of
+// 8 km: one HNI and one complementary mesh, fewer bytes, and near either house it renders like the
+// source. (That the mesh keeps its 4 mm steps over 5 km is MeshSize's test.)
+TEST(ConvertCli, ALargerDistrictPacksBuildingsFarApartIntoOne) {
+  const std::string house = ::nut::testing::fileText(std::string(NUT_SOURCE_DIR) + "/tests/data/zurich_house.obj");
+  std::ostringstream pair;
+  pair << "mtllib " << NUT_SOURCE_DIR << "/tests/data/zurich_house.mtl\n";
+  for (int copy = 0; copy < 2; ++copy) {
+    std::istringstream lines(house);
+    pair << "o house" << copy << "\n";
+    for (std::string line; std::getline(lines, line);) {
+      std::istringstream fields(line);
+      std::string tag;
+      fields >> tag;
+      if (tag == "v") {
+        double x, y, z;
+        fields >> x >> y >> z;
+        pair << "v " << x + copy * 5000.0 << " " << y << " " << z << "\n";
+      } else if (tag == "f") {
+        pair << "f";
+        for (int v; fields >> v;) pair << " " << v + copy * 22;
+        pair << "\n";
+      } else if (tag == "usemtl") {
+        pair << line << "\n";
+      }
+    }
+  }
+  const std::string obj = out("far-apart.obj");
+  std::ofstream(obj) << pair.str();
+  const std::string small = out("far-small"), large = out("far-large");
+  for (const std::string& dir : {small, large}) fs::remove_all(dir);
+  CliRun r = nut("convert " + obj + " -o " + small + " --quiet --pack-atlases");
+  ASSERT_EQ(r.exitCode, 0) << r.stderrText;
+  r = nut("convert " + obj + " -o " + large + " --quiet --pack-atlases --district-size 8192");
+  ASSERT_EQ(r.exitCode, 0) << r.stderrText;
+  auto smallCity = scene::readCityJson(small + "/city.json"), largeCity = scene::readCityJson(large + "/city.json");
+  ASSERT_TRUE(smallCity && largeCity);
+  EXPECT_EQ(smallCity->buildings.size(), 2u);
+  ASSERT_EQ(largeCity->buildings.size(), 1u);
+  EXPECT_FALSE(largeCity->buildings[0].complement.empty());
+  std::uintmax_t smallBytes = 0, largeBytes = 0;
+  for (const auto& [dir, bytes] : {std::pair{small, &smallBytes}, std::pair{large, &largeBytes}})
+    for (const fs::directory_entry& e : fs::directory_iterator(dir))
+      if (e.path().filename() != "city.json") *bytes += e.file_size();
+  EXPECT_LT(largeBytes, smallBytes);
+  for (int copy = 0; copy < 2; ++copy) {
+    const double x = 3900 + copy * 5000.0;
+    const std::string view =
+        " --size 480x270 --eye " + std::to_string(x + 14) + ",86,-404 --target " + std::to_string(x) + ",75,-418";
+    const std::string source = out("far-source" + std::to_string(copy) + ".png");
+    r = nut("render-mesh " + obj + " -o " + source + view);
+    ASSERT_EQ(r.exitCode, 0) << r.stderrText;
+    EXPECT_GE(cityWithinPct(large + "/city.json", out("far-large" + std::to_string(copy) + ".png"), source, view), 99.5)
+        << "house " << copy;
+  }
 }
 
 TEST(RenderCli, ABadManifestFailsNamingWhere) {

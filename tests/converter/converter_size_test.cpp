@@ -27,25 +27,30 @@ namespace {
 
 namespace fs = std::filesystem;
 
-TEST(MeshSize, TheGlbDecodesBackToTheTriangles) {
-  // The carpark moved a million metres east: the GLB's node carries the offset in double, its
-  // 16-bit positions the rest. Read back by the scene's GLB reader, each triangle keeps its
-  // material and lies within one quantization step of the source.
+TriangleMesh carparkMovedEast() {
   auto obj = scene::readObj(std::string(NUT_SOURCE_DIR) + "/samples/obj/carpark.obj");
-  ASSERT_TRUE(obj.ok());
-  TriangleMesh mesh = mergeMeshes(obj->objects, "carpark").value();
+  EXPECT_TRUE(obj.ok());
+  TriangleMesh mesh = obj.ok() ? mergeMeshes(obj->objects, "carpark").value() : TriangleMesh{};
   for (glm::dvec3& p : mesh.positions) p += glm::dvec3(1e6, 0, 0);
+  return mesh;
+}
+
+double quantizationStep(const TriangleMesh& mesh) {
+  const WorldBox box = mesh.bounds();
+  const glm::dvec3 extent = box.max - box.min;
+  return std::max({extent.x, extent.y, extent.z}) / 65535.0;
+}
+
+// Reads `mesh` back from its GLB with the scene's reader: each triangle keeps its material and
+// its centroid lies within `step` of a source triangle's of that material (the encoder reorders
+// triangles and may start each at another corner).
+void expectDecodesBack(const TriangleMesh& mesh, double step) {
   const std::vector<std::uint8_t> glb = meshoptGlb(mesh);
   std::vector<std::string> warnings;
   auto decoded = scene::readGlbBytes(glb, "carpark.glb", warnings);
   ASSERT_TRUE(decoded.ok()) << decoded.error().message;
   EXPECT_TRUE(warnings.empty());
   ASSERT_EQ(decoded->triangles.size(), mesh.triangles.size());
-  const WorldBox box = mesh.bounds();
-  const glm::dvec3 extent = box.max - box.min;
-  const double step = std::max({extent.x, extent.y, extent.z}) / 65535.0;
-  // Each decoded triangle against the source triangles of its colour, by centroid (the encoder
-  // reorders triangles and may start each at another corner).
   std::map<std::array<std::uint8_t, 4>, std::vector<glm::dvec3>> sourceCentroids;
   const auto centroid = [](const TriangleMesh& m, std::size_t t) {
     const auto& [a, b, c] = m.triangles[t];
@@ -67,9 +72,27 @@ TEST(MeshSize, TheGlbDecodesBackToTheTriangles) {
     unmatched += matched ? 0 : 1;
   }
   EXPECT_EQ(unmatched, 0u);
+}
+
+TEST(MeshSize, TheGlbDecodesBackToTheTriangles) {
+  // The carpark moved a million metres east: the GLB's node carries the offset in double, its
+  // 16-bit positions the rest, within one quantization step.
+  const TriangleMesh mesh = carparkMovedEast();
+  expectDecodesBack(mesh, quantizationStep(mesh));
   const MeshSizes sizes = measureMesh(mesh);
   EXPECT_LT(sizes.glbGzipBytes, sizes.glbBytes);
   EXPECT_LT(sizes.glbBytes, sizes.decodedBytes);
+}
+
+TEST(MeshSize, AMeshKilometresAcrossKeepsTheStepOfEachPart) {
+  // Two carparks 5 km apart, as a district of buildings far apart is: one 16-bit grid over both
+  // would step 7.6 cm; each 256 m tile has its own node and grid, so the step stays the carpark's.
+  const TriangleMesh one = carparkMovedEast();
+  TriangleMesh moved = one;
+  for (glm::dvec3& p : moved.positions) p += glm::dvec3(3000, 0, 4000);
+  const TriangleMesh both = mergeMeshes(std::vector<const TriangleMesh*>{&one, &moved}, "carparks").value();
+  ASSERT_GT(quantizationStep(both), 0.05);
+  expectDecodesBack(both, quantizationStep(one));
 }
 
 class SampleSize : public ::testing::TestWithParam<std::string> {};

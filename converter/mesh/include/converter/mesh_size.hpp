@@ -2,12 +2,15 @@
 // docs/CONVERTER.md: a binary glTF (GLB) compressed the way gltfpack does it, with
 // meshoptimizer, then gzip.
 //
-// The GLB has one primitive per material (glTF has no per-triangle material), positions only
-// (flat shading needs no normals: the glTF default), quantized to 16 bits per axis over the
-// mesh's bounds (KHR_mesh_quantization; 2 mm steps on a 140 m tower) and, per primitive,
-// vertex-cache and vertex-fetch optimized, then encoded with meshopt_encodeVertexBuffer and
-// meshopt_encodeIndexBuffer (EXT_meshopt_compression). The JSON chunk is written in full, so its
-// bytes count too.
+// The GLB has one mesh and node per 256 m cube the triangles' centroids fall in (one for a
+// building), one primitive per material in each (glTF has no per-triangle material), positions
+// only (flat shading needs no normals: the glTF default), quantized to 16 bits per axis over the
+// cube's triangles' bounds (KHR_mesh_quantization; 2 mm steps on a 140 m tower, 4 mm at most
+// however far apart a district's buildings lie), the node placing them. Each primitive is
+// vertex-cache and vertex-fetch optimized; as gltfpack lays them out, all vertices are then one
+// buffer view encoded with meshopt_encodeVertexBuffer and all indices one encoded with
+// meshopt_encodeIndexBuffer (EXT_meshopt_compression), materials shared. The JSON chunk is written
+// in full, so its bytes count too.
 #pragma once
 
 #include <cstdint>
