@@ -151,11 +151,15 @@ nlohmann::json materialJson(const Material& mat) {
   return m;
 }
 
-// The mesh's triangles grouped by the kTileM cube their centroid lies in, each group a mesh of
-// its own (positions 16 bits over the group's bounds: 4 mm steps at most, whatever the mesh's
-// extent), in order of first triangle.
+// The mesh's triangles grouped by the kTileM cube, counted from the mesh's minimum corner, their
+// centroid lies in, each group a mesh of its own (positions 16 bits over the group's bounds: 4 mm
+// steps at most, whatever the mesh's extent), in order of first triangle. A mesh within one cube's
+// extent is one group.
 constexpr double kTileM = 256.0;
 std::vector<TriangleMesh> tiles(const TriangleMesh& mesh) {
+  const WorldBox box = mesh.bounds();
+  const glm::dvec3 extent = box.max - box.min;
+  const double size = std::max({extent.x, extent.y, extent.z}) <= kTileM ? INFINITY : kTileM;
   std::map<std::array<std::int64_t, 3>, std::size_t> tileOf;
   std::vector<TriangleMesh> out;
   for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
@@ -163,7 +167,7 @@ std::vector<TriangleMesh> tiles(const TriangleMesh& mesh) {
     const glm::dvec3 centroid = (mesh.positions[tri[0]] + mesh.positions[tri[1]] + mesh.positions[tri[2]]) / 3.0;
     std::array<std::int64_t, 3> key{};
     for (int a = 0; a < 3; ++a)
-      key[static_cast<std::size_t>(a)] = static_cast<std::int64_t>(std::floor(centroid[a] / kTileM));
+      key[static_cast<std::size_t>(a)] = static_cast<std::int64_t>(std::floor((centroid[a] - box.min[a]) / size));
     auto [it, fresh] = tileOf.try_emplace(key, out.size());
     if (fresh) {
       out.emplace_back();
