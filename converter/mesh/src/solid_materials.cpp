@@ -497,12 +497,76 @@ SharedSubBlock shareTurned(std::vector<Block>& subBlocks, Block s) {
 }
 
 // What the shares decide: each cell's material (of largest area among its shares; the hint where
-// it has none), and per quadric piece shown by a sub-block, the area of each material per layer
+// it has none, or for a box open to the outside exposedBoxMaterials' where it has none but on its
+// underside), and per quadric piece shown by a sub-block, the area of each material per layer
 // of its box (layer * materials + material; empty when its cells have no shares).
 struct MaterialChoice {
   std::vector<std::uint16_t> cell;
   std::vector<std::vector<double>> pieceLayerArea;
 };
+
+// The distance along the ray from `from` in direction `dir` (a unit axis) to triangle abc, or
+// infinity (Moller-Trumbore).
+double rayDistance(const dvec3& from, const dvec3& dir, const dvec3& a, const dvec3& b, const dvec3& c) {
+  const dvec3 e1 = b - a, e2 = c - a, q = glm::cross(dir, e2);
+  const double det = glm::dot(e1, q);
+  if (std::abs(det) < 1e-15) return INFINITY;
+  const dvec3 s = from - a;
+  const double u = glm::dot(s, q) / det;
+  if (u < 0 || u > 1) return INFINITY;
+  const dvec3 r = glm::cross(s, e1);
+  const double v = glm::dot(dir, r) / det;
+  if (v < 0 || u + v > 1) return INFINITY;
+  const double t = glm::dot(e2, r) / det;
+  return t > 0 ? t : INFINITY;
+}
+
+// A box cell with no face on its sides but the underside, which only a view from below sees, takes
+// its column's hint or the underside's material: under a wall a little off the axes (left to the
+// mesh, in front of the box) that is the ground plate, whose colour then shows where the wall
+// drifts behind the box's side (a Zurich house in the ground's grey over a third of a wall). Such
+// a box open to the outside across another side (an empty neighbour, the grid's edge) takes
+// instead the material of the nearest face beyond those sides, seen from its centre. Every face is
+// tried for every such box, up to kMaxExposedTests pairs; beyond that the materials stay.
+constexpr double kMaxExposedTests = 2e7;
+constexpr int kUnderside = 2;  // 2 * axis + 0: the side facing -y
+
+void exposedBoxMaterials(const Builder& b, const std::vector<std::uint8_t>& seenFace,
+                         std::vector<std::uint16_t>& material) {
+  std::vector<std::pair<std::size_t, std::vector<int>>> exposed;  // cell, open sides
+  for (std::size_t id = 0; id < b.shape.size(); ++id) {
+    if (b.shape[id] != 0 || seenFace[id] || b.subPiece[id] >= 0) continue;
+    const std::array<int, 3> c = b.cellAt(id);
+    std::vector<int> open;
+    for (int side = 0; side < 6; ++side) {
+      if (side == kUnderside) continue;
+      std::array<int, 3> n = c;
+      n[static_cast<std::size_t>(side / 2)] += side % 2 ? 1 : -1;
+      const bool outside =
+          n[static_cast<std::size_t>(side / 2)] < 0 || n[static_cast<std::size_t>(side / 2)] >= b.n[side / 2];
+      if (outside || b.shape[b.index(n)] < 0) open.push_back(side);
+    }
+    if (!open.empty()) exposed.emplace_back(id, std::move(open));
+  }
+  if (static_cast<double>(exposed.size()) * static_cast<double>(b.mesh.triangles.size()) > kMaxExposedTests) return;
+  for (const auto& [id, open] : exposed) {
+    dvec3 lo, hi;
+    b.cellBox(id, lo, hi);
+    const dvec3 centre = 0.5 * (lo + hi);
+    double nearest = INFINITY;
+    for (int side : open) {
+      dvec3 dir(0.0);
+      dir[side / 2] = side % 2 ? 1.0 : -1.0;
+      for (std::uint32_t f = 0; f < b.mesh.triangles.size(); ++f) {
+        const double t = rayDistance(centre, dir, b.corner(f, 0), b.corner(f, 1), b.corner(f, 2));
+        if (t < nearest) {
+          nearest = t;
+          material[id] = b.mesh.triangleMaterial[f];
+        }
+      }
+    }
+  }
+}
 
 MaterialChoice chooseMaterials(const Builder& b, const std::vector<Builder::Share>& shares) {
   MaterialChoice choice{b.hint, std::vector<std::vector<double>>(b.quadrics.size())};
@@ -525,6 +589,9 @@ MaterialChoice chooseMaterials(const Builder& b, const std::vector<Builder::Shar
     }
     i = j;
   }
+  std::vector<std::uint8_t> seenFace(b.shape.size(), 0);
+  for (const Builder::Share& share : shares) seenFace[share.cell] |= share.side != kUnderside;
+  exposedBoxMaterials(b, seenFace, choice.cell);
   return choice;
 }
 
