@@ -90,8 +90,8 @@ void printSummary(const converter::ConvertReport& r, const std::string& output) 
   std::fprintf(stderr, "convert: %s: %s\n", r.name.c_str(), r.check.summary().c_str());
   if (r.sheets.found)
     std::fprintf(stderr,
-                 "convert: %s: open sheets %.1f m^2 (%zu triangles) around a closed body; %s (%ju against %ju bytes)\n",
-                 r.name.c_str(), r.sheets.areaM2, r.sheets.triangles,
+                 "convert: %s: open sheets %.1f m^2 (%zu triangles) around a %s body; %s (%ju against %ju bytes)\n",
+                 r.name.c_str(), r.sheets.areaM2, r.sheets.triangles, r.sheets.bodyClosed ? "closed" : "still open",
                  r.sheets.applied ? "converted as the body" : "converted as it is",
                  static_cast<std::uintmax_t>(r.sheets.applied ? r.sheets.bytesWith : r.sheets.bytesWithout),
                  static_cast<std::uintmax_t>(r.sheets.applied ? r.sheets.bytesWithout : r.sheets.bytesWith));

@@ -621,6 +621,7 @@ Result<Conversion> convertMesh(TriangleMesh mesh, const ConvertOptions& options)
   Conversion body;
   body.report = checked;
   SheetReport& sheets = body.report.sheets;
+  // Applied while the body is converted, so that closedSurface() speaks for it; decided below.
   sheets.found = sheets.applied = true;
   sheets.triangles = split->sheets.triangles.size();
   sheets.areaM2 = split->sheets.area();

@@ -157,9 +157,10 @@ nlohmann::json materialJson(const Material& mat) {
 // extent is one group.
 constexpr double kTileM = 256.0;
 std::vector<TriangleMesh> tiles(const TriangleMesh& mesh) {
+  if (mesh.triangles.empty()) return {};
   const WorldBox box = mesh.bounds();
   const glm::dvec3 extent = box.max - box.min;
-  const double size = std::max({extent.x, extent.y, extent.z}) <= kTileM ? INFINITY : kTileM;
+  if (std::max({extent.x, extent.y, extent.z}) <= kTileM) return {mesh};
   std::map<std::array<std::int64_t, 3>, std::size_t> tileOf;
   std::vector<TriangleMesh> out;
   for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
@@ -167,7 +168,7 @@ std::vector<TriangleMesh> tiles(const TriangleMesh& mesh) {
     const glm::dvec3 centroid = (mesh.positions[tri[0]] + mesh.positions[tri[1]] + mesh.positions[tri[2]]) / 3.0;
     std::array<std::int64_t, 3> key{};
     for (int a = 0; a < 3; ++a)
-      key[static_cast<std::size_t>(a)] = static_cast<std::int64_t>(std::floor((centroid[a] - box.min[a]) / size));
+      key[static_cast<std::size_t>(a)] = static_cast<std::int64_t>(std::floor((centroid[a] - box.min[a]) / kTileM));
     auto [it, fresh] = tileOf.try_emplace(key, out.size());
     if (fresh) {
       out.emplace_back();

@@ -230,15 +230,15 @@ std::vector<std::vector<std::uint32_t>> splitPolygon(std::vector<dvec3>& points,
   return {front, back};
 }
 
-// Step 2 of detachSheets: each face of `s` cut along the free edges of `conformed` (s conformed)
+// Step 2 of detachSheets: each face of the conformed soup `s` cut along the free edges of `s`
 // lying in it, each part a fan of its convex outline.
-Soup cutAlongFreeEdges(const Soup& s, const Soup& conformed, double tol, std::size_t& cutFaces) {
-  const auto uses = edgeUses(conformed);
+Soup cutAlongFreeEdges(const Soup& s, double tol, std::size_t& cutFaces) {
+  const auto uses = edgeUses(s);
   std::vector<std::pair<std::uint32_t, std::uint32_t>> free;
-  for (const Triangle& t : conformed.triangles)
+  for (const Triangle& t : s.triangles)
     for (int k = 0; k < 3; ++k)
       if (uses.at(edgeKey(t[k], t[(k + 1) % 3])) == 1) free.emplace_back(t[k], t[(k + 1) % 3]);
-  Soup out{conformed.points, {}, {}, {}};
+  Soup out{s.points, {}, {}, {}};
   cutFaces = 0;
   for (std::size_t i = 0; i < s.triangles.size(); ++i) {
     const Triangle& t = s.triangles[i];
@@ -396,13 +396,11 @@ std::vector<std::uint8_t> orientation(const Soup& s, const std::vector<std::uint
 // Whether the kept faces (kept[t] == 1) close: every edge they use is run once each way.
 bool closes(const Soup& s, const std::vector<std::uint8_t>& kept) {
   std::unordered_map<std::uint64_t, int> runs;  // +1 for a -> b with a < b, -1 the other way
-  std::unordered_map<std::uint64_t, int> uses;
   for (std::size_t t = 0; t < s.triangles.size(); ++t) {
     if (kept[t] != 1) continue;
     for (int k = 0; k < 3; ++k) {
       const std::uint32_t a = s.triangles[t][k], b = s.triangles[t][(k + 1) % 3];
       runs[edgeKey(a, b)] += a < b ? 1 : -1;
-      ++uses[edgeKey(a, b)];
     }
   }
   return std::all_of(runs.begin(), runs.end(), [&](const auto& r) { return r.second == 0; });
@@ -457,7 +455,7 @@ std::optional<SheetSplit> detachSheets(const TriangleMesh& mesh, double planeTol
   Soup slivers = takeSlivers(base, planeToleranceM);
   SheetSplit split;
   const Soup conformed = conform(base, planeToleranceM);
-  Soup cut = cutAlongFreeEdges(conformed, conformed, planeToleranceM, split.cutTriangles);
+  Soup cut = cutAlongFreeEdges(conformed, planeToleranceM, split.cutTriangles);
   // The parts of two faces cut where they meet share the cut's end; faces written whole use the
   // same places.
   const std::vector<std::uint32_t> place = weldPlaces(cut, planeToleranceM);
