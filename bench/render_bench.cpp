@@ -3,10 +3,11 @@
 // converted sample buildings, from the default camera and from a close-up that fills the screen
 // (the paper's Table 5). Embree is measured one ray at a time (rtcIntersect1), in packets of 8 and
 // 16 (rtcIntersect8/16) and as a coherent stream (rtcIntersect1M); the report takes the fastest
-// as the peer. Then a generated LoD2 district converted with and without plane cells, drawn with
-// its complementary meshes, against Embree on its source mesh; and the caster's level-of-detail
-// settings against the error they cost (pixels differing from full detail). Results read as
-// rays/s; make bench writes docs/BENCHMARKS.md.
+// as the peer. The NUT caster is measured one ray at a time with each lookup, and with the exact
+// lookup in packets (HniRayCaster::traceMany). Then a generated LoD2 district converted with and without plane cells,
+// drawn with its complementary meshes, against Embree on its source mesh; and the caster's level-of-detail settings
+// against the error they cost (pixels differing from full detail). Results read as rays/s; make bench writes
+// docs/BENCHMARKS.md.
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
@@ -145,11 +146,13 @@ double slowdown() {
   return k;
 }
 
-void nutCaster(benchmark::State& state, const std::string& name, View view, nut::Lookup lookup, double lodPx) {
+void nutCaster(benchmark::State& state, const std::string& name, View view, nut::Lookup lookup, double lodPx,
+               bool packets = false) {
   const Scene& s = scene(name);
   nut::RayCastOptions options;
   options.lookup = lookup;
   options.lodPx = lodPx;
+  options.packets = packets;
   nut::RenderStats stats;
   nut::RenderOutput out;
   for (auto _ : state) {
@@ -254,6 +257,8 @@ const bool registered = [] {
           [n, view](benchmark::State& st) { nutCaster(st, n, view, nut::Lookup::Heuristic, 0); });
       add("Render/nut_exact" + suffix,
           [n, view](benchmark::State& st) { nutCaster(st, n, view, nut::Lookup::Exact, 0); });
+      add("Render/nut_packets" + suffix,
+          [n, view](benchmark::State& st) { nutCaster(st, n, view, nut::Lookup::Exact, 0, true); });
     }
   add("Render/district/nut_boxes_wedges_mesh", [](benchmark::State& st) { districtNut(st, 0); });
   add("Render/district/nut_plane_cells", [](benchmark::State& st) { districtNut(st, 1); });

@@ -9,6 +9,8 @@ packages=(
   # core: PNG I/O, maths, CLI, JSON
   libpng-dev zlib1g-dev libzopfli-dev libglm-dev
   libcli11-dev nlohmann-json3-dev
+  # the CPU ray caster's packets: portable SIMD
+  libhwy-dev
   # the mesh reference renderer: Embree ray tracing
   libembree-dev libtbb-dev
   # GL back-ends: OSMesa (headless, CPU), EGL (headless GPU), GLFW windows under Xvfb

@@ -8,6 +8,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
+#include <map>
 #include <numbers>
 #include <sstream>
 
@@ -89,7 +91,41 @@ RayResult Scene::cast(const Ray& ray, Lookup lookup, int maxIterations) const {
   RayCastOptions o;
   o.lookup = lookup;
   o.maxIterations = maxIterations;
-  return caster->trace(ray.origin, ray.dir, 1e-3, o);
+  const RayResult result = caster->trace(ray.origin, ray.dir, 1e-3, o);
+  if (casts_.size() < kPacketCheckRays) casts_.push_back({ray, lookup, maxIterations, result});
+  return result;
+}
+
+Scene::~Scene() { expectPacketsAgree(); }
+
+void Scene::expectPacketsAgree() const {
+  std::map<std::pair<Lookup, int>, std::vector<const Cast*>> batches;
+  for (const Cast& c : casts_) batches[{c.lookup, c.maxIterations}].push_back(&c);
+  int failures = 0;
+  for (const auto& [key, batch] : batches) {
+    std::vector<glm::dvec3> origins, directions;
+    for (const Cast* c : batch) origins.push_back(c->ray.origin), directions.push_back(c->ray.dir);
+    RayCastOptions o;
+    o.lookup = key.first;
+    o.maxIterations = key.second;
+    std::vector<RayResult> packets(batch.size());
+    caster->traceMany(origins, directions, 1e-3, o, packets);
+    for (std::size_t i = 0; i < batch.size() && failures < 5; ++i) {
+      const RayResult& one = batch[i]->result;
+      const RayResult& packet = packets[i];
+      const bool same = one.hit == packet.hit && std::memcmp(&one.distanceM, &packet.distanceM, sizeof(double)) == 0 &&
+                        std::memcmp(&one.normal, &packet.normal, sizeof one.normal) == 0 &&
+                        one.colour == packet.colour && one.iterations == packet.iterations &&
+                        one.capped == packet.capped;
+      if (same) continue;
+      ++failures;
+      ADD_FAILURE() << name << ", " << lookupName(key.first)
+                    << ": the packet caster differs from the one-ray caster on ray " << batch[i]->ray.index << " from "
+                    << nut::testing::describe(batch[i]->ray.origin) << " along "
+                    << nut::testing::describe(batch[i]->ray.dir) << "; one ray: " << nut::testing::describe(one)
+                    << "; packet: " << nut::testing::describe(packet);
+    }
+  }
 }
 
 Reference Scene::exact(const Ray& ray, Lookup lookup, const ExactOptions& options) const {

@@ -55,6 +55,12 @@ struct Reference {
 };
 
 // A hierarchy as both renderers see it. Not movable: the caster keeps a reference to the image.
+// Every ray cast() traces (up to kPacketCheckRays) is traced again by the packet caster
+// (HniRayCaster::traceMany) when the scene is destroyed, in batches of every ray cast with the same
+// lookup and cap; each answer must be the one-ray caster's to the bit, or the test fails naming
+// the ray. So every stress test checks the packet path on its own scenes and rays too.
+inline constexpr std::size_t kPacketCheckRays = 1000000;
+
 struct Scene {
   std::string name;
   Hierarchy model;                 // quantized(h): exactly what the image encodes
@@ -67,6 +73,7 @@ struct Scene {
   Scene() = default;
   Scene(const Scene&) = delete;
   Scene& operator=(const Scene&) = delete;
+  ~Scene();
 
   glm::dvec3 rootSize() const { return model.blocks[model.root].sizeM(); }
   glm::dvec3 toWorld(const glm::dvec3& local) const { return origin + local; }
@@ -82,6 +89,16 @@ struct Scene {
 
   // A ray from a random point 1.2 to 4 bounding radii from the root box's centre towards `target`.
   Ray rayFromOutside(std::mt19937_64& rng, const glm::dvec3& target, long long index) const;
+
+ private:
+  struct Cast {
+    Ray ray;
+    Lookup lookup;
+    int maxIterations;
+    RayResult result;
+  };
+  mutable std::vector<Cast> casts_;  // what cast() answered, for the packet check
+  void expectPacketsAgree() const;
 };
 
 // Compiles h (a test failure naming the scene when it does not compile; nullptr then).

@@ -12,7 +12,9 @@
 #include <array>
 #include <cstdint>
 #include <functional>
+#include <memory>
 #include <optional>
+#include <span>
 #include <unordered_map>
 #include <vector>
 
@@ -41,6 +43,10 @@ struct RayCastOptions {
   // Draw each opaque hit in the colour of the iterations its ray took (nut/heat_map.hpp), unshaded
   // and untinted; rays that reach no opaque surface are drawn as usual.
   bool heatMap = false;
+  // renderHni traces each tile's rays together on the CPU's SIMD lanes (traceMany) instead of one
+  // at a time with trace(), the reference. Both give the same image to the bit; the packets are
+  // slower on the CPUs measured (docs/BENCHMARKS.md, "Packets").
+  bool packets = false;
 };
 
 // Levels of the traversal stack: deeper redirections are drawn as their visual summary.
@@ -57,6 +63,8 @@ struct RayResult {
   int iterations = 0;
   bool capped = false;
 };
+
+struct RayPacketTables;
 
 // A prepared HNI: the image (kept by reference) and its block headers, decoded once.
 class HniRayCaster {
@@ -76,6 +84,16 @@ class HniRayCaster {
   // used only for level of detail.
   RayResult trace(const glm::dvec3& originM, const glm::dvec3& direction, double pixelAngle,
                   const RayCastOptions& options) const;
+
+  // Many rays traced together (raycast_packet.cpp): each lane of the widest SIMD unit the CPU has
+  // (Google Highway, chosen at run time) walks one ray and takes the next when its ray ends. Empty
+  // cells and redirections are walked on the lanes; a ray that meets anything else (a surface, a
+  // level-of-detail summary, the iteration cap) is handed to trace()'s walk where it stands, as is
+  // each of the last rays when too few remain to fill a quarter of the lanes. originsM holds one
+  // origin per ray, or one for all. results[i] is, to the bit,
+  // trace(originsM[i], directions[i], pixelAngle, options).
+  void traceMany(std::span<const glm::dvec3> originsM, std::span<const glm::dvec3> directions, double pixelAngle,
+                 const RayCastOptions& options, std::span<RayResult> results) const;
 
   // A block header decoded once, with its axis views (the shader re-reads these at each landing)
   // and each axis's boundaries b_0 = 0 .. b_W = D in units, as the heuristic and the exact
@@ -112,9 +130,10 @@ class HniRayCaster {
     std::array<std::uint16_t, 2> surfaceMaterials;  // each plane's surface
   };
 
-  // One ray's traversal (raycast.cpp), with the lookup's boundaries.
+  // One ray's traversal (ray_walk.hpp), with the lookup's boundaries.
   template <Lookup mode>
   class Walk;
+  friend struct RayPackets;  // the packet caster's access to the tables and the walk
   int blockAt(TexelAddress header) const;
   void addPlaneCell(std::uint32_t packedRecord);
 
@@ -132,6 +151,7 @@ class HniRayCaster {
   std::vector<Material> materials_;    // the material table, decoded once like the headers
   int root_ = 0;
   FileRecord file_;
+  std::shared_ptr<const RayPacketTables> packetTables_;  // the above, flattened for SIMD gathers
 };
 
 struct RenderOutput {
