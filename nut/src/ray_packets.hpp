@@ -4,10 +4,12 @@
 // one-ray walk it hands rays over to.
 #pragma once
 
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <vector>
 
+#include <glm/mat3x3.hpp>
 #include <glm/vec3.hpp>
 
 #include <nut/raycast.hpp>
@@ -21,13 +23,19 @@ struct RayPacketTables {
   std::int32_t rowPixels = 0;            // texels per image row
   // Per block, at the caster's block index: the texel of cell (0, 0, 0) and the cells along x.
   std::vector<std::int32_t> bottomPixel, cellsX;
-  // Per block axis, at 3 * block + axis: its size (units), cells, and where its boundaries
-  // b_0 .. b_W start in the boundary arrays.
-  std::vector<float> size;
-  std::vector<std::int32_t> cells, boundsStart;
+  // Per block axis, at 3 * block + axis: AxisView's constants, the texels where its metadata and
+  // exact rows start, and where its boundaries b_0 .. b_W start in the boundary arrays.
+  std::vector<float> size, scale, exactLast, stepScale, lastStep;
+  std::vector<std::int32_t> cells, metaPixel, exactPixel, boundsStart;
   std::vector<float> heuristicBounds, exactBounds;
-  // Redirection record (256 * v + u) -> its level-of-detail footprint (units; 0 = none).
-  std::vector<float> lodFootprintByRecord;
+  // Redirection record (256 * v + u) -> index r into the arrays below (the caster's redirects_),
+  // or -1.
+  std::vector<std::int32_t> redirectByRecord;
+  std::array<std::vector<float>, 3> offset;   // units
+  std::array<std::vector<float>, 9> toChild;  // the cell's frame to the target's: glm's [c][r] at 3 c + r
+  std::vector<glm::mat3> rotation;            // the target's frame to the cell's
+  std::vector<std::int32_t> target, wrap, unrotated;
+  std::vector<float> lodFootprint;  // units; 0 = none
 };
 
 // The packet caster is built per SIMD target outside the caster's class; this friend gives it the
