@@ -78,7 +78,9 @@ VF perLane(const std::vector<float>& table, MI valid, VI index, std::size_t shar
 VI perLane(const std::vector<std::int32_t>& table, MI valid, VI index, std::size_t shared) {
   return shared != kNone ? hn::Set(DI(), table[shared]) : gather(table.data(), valid, index);
 }
-std::size_t axisOf(std::size_t block, int a) { return block == kNone ? kNone : 3 * block + static_cast<std::size_t>(a); }
+std::size_t axisOf(std::size_t block, int a) {
+  return block == kNone ? kNone : 3 * block + static_cast<std::size_t>(a);
+}
 
 // The ray parameter where the ray leaves [lo, hi] (shifted by tile) along one axis: exitParameter.
 VF exitParameter(VF tile, VF lo, VF hi, VF o, VF d, VF invD) {
@@ -91,10 +93,31 @@ VF exitParameter(VF tile, VF lo, VF hi, VF o, VF d, VF invD) {
 
 // The fields of a Level (ray_walk.hpp) with the constants of its block, for every lane: a float
 // field x of axis a is f[kX + a], an int field i[kX + a].
-enum FloatField { kO = 0, kD = 3, kInvD = 6, kTile = 9, kLo = 12, kHi = 15, kTNext = 18, kTExit = 21, kTStepLimit,
-                  kSize, kFloatFields = kSize + 3 };
-enum IntField { kCell = 0, kBlock = 3, kWrap, kEntryAxis, kRedirect, kCells, kBoundsStart = kCells + 3,
-                kBottomPixel = kBoundsStart + 3, kCellsX, kIntFields };
+enum FloatField {
+  kO = 0,
+  kD = 3,
+  kInvD = 6,
+  kTile = 9,
+  kLo = 12,
+  kHi = 15,
+  kTNext = 18,
+  kTExit = 21,
+  kTStepLimit,
+  kSize,
+  kFloatFields = kSize + 3
+};
+enum IntField {
+  kCell = 0,
+  kBlock = 3,
+  kWrap,
+  kEntryAxis,
+  kRedirect,
+  kCells,
+  kBoundsStart = kCells + 3,
+  kBottomPixel = kBoundsStart + 3,
+  kCellsX,
+  kIntFields
+};
 struct alignas(64) LevelLanes {
   float f[kFloatFields][kMaxLanes];
   std::int32_t i[kIntFields][kMaxLanes];
@@ -338,9 +361,8 @@ class PacketWalk {
     const VF t = hn::Load(df, t_);
     const VF tCellExit = stdMin(tMin, F(kTExit));
     const MI inside = hn::And(busy, toInt(hn::Gt(tCellExit, t)));
-    const VI texelIndex =
-        hn::Sub(hn::Add(hn::Add(I(kBottomPixel), I(kCell)), hn::Mul(I(kCell + 2), I(kCellsX))),
-                hn::Mul(hn::Set(di, tables_.rowPixels), I(kCell + 1)));
+    const VI texelIndex = hn::Sub(hn::Add(hn::Add(I(kBottomPixel), I(kCell)), hn::Mul(I(kCell + 2), I(kCellsX))),
+                                  hn::Mul(hn::Set(di, tables_.rowPixels), I(kCell + 1)));
     const VI texel = gather(tables_.pixels, inside, texelIndex);
     const VI kind = hn::IfThenElseZero(inside, hn::And(hn::ShiftRight<24>(texel), hn::Set(di, 0xff)));
     const MI active = hn::AndNot(handing, busy);
@@ -379,8 +401,8 @@ class PacketWalk {
       stands = hn::And(hn::Gt(footprint, hn::Zero(df)), hn::Gt(pixelSpan, footprint));
     }
     if (options_.lodPx > 0) {
-      const VF cellSize = hn::Max(hn::Max(hn::Sub(F(kHi), F(kLo)), hn::Sub(F(kHi + 1), F(kLo + 1))),
-                                  hn::Sub(F(kHi + 2), F(kLo + 2)));
+      const VF cellSize =
+          hn::Max(hn::Max(hn::Sub(F(kHi), F(kLo)), hn::Sub(F(kHi + 1), F(kLo + 1))), hn::Sub(F(kHi + 2), F(kLo + 2)));
       stands = hn::Or(stands, hn::Lt(cellSize, hn::Mul(hn::Set(df, static_cast<float>(options_.lodPx)), pixelSpan)));
     }
     return toInt(stands);
@@ -537,8 +559,8 @@ class PacketWalk {
   const std::size_t lanes_;
   const float* bounds_;
   const bool lod_;
-  std::size_t next_ = 0;  // the next ray to start
-  LevelLanes cur_;        // each lane's current level
+  std::size_t next_ = 0;                          // the next ray to start
+  LevelLanes cur_;                                // each lane's current level
   std::array<LevelLanes, kMaxStackDepth> saved_;  // the levels below it, by depth
   alignas(64) float t_[kMaxLanes];
   alignas(64) std::int32_t top_[kMaxLanes], iterations_[kMaxLanes], busy_[kMaxLanes];
