@@ -22,6 +22,7 @@
 #include <vector>
 
 #include <converter/convert.hpp>
+#include <converter/mesh_lod.hpp>
 #include <meshref/embree_renderer.hpp>
 #include <nut/hni.hpp>
 #include <nut/image_compare.hpp>
@@ -185,6 +186,12 @@ void embree(benchmark::State& state, const std::string& name, View view, nut::me
 struct District {
   std::unique_ptr<nut::scene::SceneRenderer> renderers[2];
   std::unique_ptr<nut::meshref::EmbreeRenderer> embree;
+  // The default conversion seen from four times as far, its complements at full detail and at
+  // the levels that camera picks (converter/mesh_lod.hpp, as `nut render --lod auto` picks them).
+  nut::Camera farCamera;
+  std::unique_ptr<nut::scene::SceneRenderer> far[2];
+  std::size_t farTriangles[2] = {0, 0};
+  nut::Image farFull;
 };
 
 const District& district() {
@@ -203,6 +210,28 @@ const District& district() {
       out->renderers[planes] =
           std::make_unique<nut::scene::SceneRenderer>(placed, orFail(nut::meshref::traceMeshes(meshes)));
     }
+    const nut::bench::ConvertedDistrict& c = source.converted[0];
+    out->farCamera = source.camera;
+    out->farCamera.eye = source.camera.target + 4.0 * (source.camera.eye - source.camera.target);
+    out->farCamera.farM *= 4.0;
+    nut::scene::Scene levels;
+    for (const nut::TriangleMesh& m : c.complements) {
+      if (m.triangles.empty()) continue;
+      levels.meshes.push_back(m);
+      levels.coarser.emplace_back();
+      for (nut::converter::MeshLevel& level : nut::converter::meshLevels(m))
+        levels.coarser.back().push_back({std::move(level.mesh), level.errorM});
+    }
+    std::vector<nut::scene::PlacedHni> placed;
+    for (std::size_t i = 0; i < c.images.size(); ++i) placed.push_back({&c.images[i], c.originsM[i]});
+    for (int lod = 0; lod < 2; ++lod) {
+      const auto meshes = lod ? levels.meshPointers(out->farCamera) : levels.meshPointers();
+      for (const nut::TriangleMesh* m : meshes) out->farTriangles[lod] += m->triangles.size();
+      out->far[lod] = std::make_unique<nut::scene::SceneRenderer>(placed, orFail(nut::meshref::traceMeshes(meshes)));
+    }
+    nut::RayCastOptions exact;
+    exact.lookup = nut::Lookup::Exact;
+    out->farFull = out->far[0]->render(out->farCamera, exact, kThreads).colour;
     return out;
   }();
   return *d;
@@ -222,6 +251,23 @@ void districtNut(benchmark::State& state, int planes) {
   state.SetItemsProcessed(state.iterations() * kWidth * kHeight);
   state.counters["complement_triangles"] = static_cast<double>(source.converted[planes].complementTriangles);
   state.counters["plane_cells"] = static_cast<double>(source.converted[planes].planeCells);
+}
+
+// Render/district/far_complements_{full,levels}: the district from four times as far, its
+// complements at full detail or at the levels the camera picks; differing_pct against full detail.
+void districtFar(benchmark::State& state, int lod) {
+  const District& d = district();
+  nut::RayCastOptions options;
+  options.lookup = nut::Lookup::Exact;
+  nut::RenderOutput out;
+  for (auto _ : state) {
+    out = d.far[lod]->render(d.farCamera, options, kThreads);
+    benchmark::DoNotOptimize(out.colour.pixels.data());
+  }
+  state.SetItemsProcessed(state.iterations() * kWidth * kHeight);
+  state.counters["complement_triangles"] = static_cast<double>(d.farTriangles[lod]);
+  auto diff = nut::compareImages(out.colour, d.farFull, 8);
+  state.counters["differing_pct"] = diff ? diff->differingPct : -1;
 }
 
 void districtEmbree(benchmark::State& state, nut::meshref::EmbreeRays rays) {
@@ -262,6 +308,8 @@ const bool registered = [] {
     }
   add("Render/district/nut_boxes_wedges_mesh", [](benchmark::State& st) { districtNut(st, 0); });
   add("Render/district/nut_plane_cells", [](benchmark::State& st) { districtNut(st, 1); });
+  add("Render/district/far_complements_full", [](benchmark::State& st) { districtFar(st, 0); });
+  add("Render/district/far_complements_levels", [](benchmark::State& st) { districtFar(st, 1); });
   for (const auto& [method, rays] : embreeModes)
     add("Render/district/" + std::string(method) + "_source",
         [rays = rays](benchmark::State& st) { districtEmbree(st, rays); });

@@ -43,6 +43,7 @@ struct ConvertCliOptions {
   std::string prefer = "files";
   double districtSideM = converter::kDistrictSideM;
   std::string complementFormat = "glb";  // of the complements written into a folder
+  int complementLevels = 0;              // coarser levels written beside each complement
 };
 
 // -o names one HNI when it ends in .png (any case); otherwise a folder.
@@ -179,6 +180,7 @@ struct ConvertedBuilding {
   int exitCode = kOk;
   glm::dvec3 originM{0.0};
   WorldBox boundsM;  // the placed root block's, for the manifest (without --pack-atlases)
+  std::vector<scene::ComplementLevel> complementLevels;
   converter::ConvertReport report;
   Hierarchy hierarchy;          // with --pack-atlases
   TriangleMesh complementMesh;  // with --pack-atlases
@@ -212,12 +214,20 @@ std::vector<ConvertedBuilding> convertSideBySide(const ConvertCliOptions& o, std
       const bool hasComplement = !conversion->complement.triangles.empty();
       b.hni = stems[i] + ".png";
       b.complement = hasComplement ? stems[i] + ".complement." + o.complementFormat : "";
-      if (Status s = converter::writeConversion(*conversion, (fs::path(o.output) / b.hni).string(),
-                                                hasComplement ? (fs::path(o.output) / b.complement).string() : "",
-                                                effortOf(o));
+      const std::string complement = hasComplement ? (fs::path(o.output) / b.complement).string() : "";
+      if (Status s =
+              converter::writeConversion(*conversion, (fs::path(o.output) / b.hni).string(), complement, effortOf(o));
           !s) {
         b.error = s.error().message;
         b.exitCode = kUnreadable;
+      } else if (hasComplement) {
+        auto levels = converter::writeComplementLevels(complement, conversion->complement, o.complementLevels);
+        if (levels) {
+          b.complementLevels = std::move(*levels);
+        } else {
+          b.error = levels.error().message;
+          b.exitCode = kUnreadable;
+        }
       }
     }
     b.report = std::move(conversion->report);
@@ -261,6 +271,9 @@ Status writeDistrict(const ConvertCliOptions& o, const std::vector<ConvertedBuil
       d.entry.complement = stem + ".complement." + o.complementFormat;
       const std::string mesh = (fs::path(o.output) / d.entry.complement).string();
       if (Status s = converter::writeComplement(mesh, *merged); !s) return s;
+      auto levels = converter::writeComplementLevels(mesh, *merged, o.complementLevels);
+      if (!levels) return levels.error();
+      d.entry.complementLevels = std::move(*levels);
       std::error_code ec;
       d.complementBytes = fs::file_size(mesh, ec);
     }
@@ -342,7 +355,8 @@ int convertCity(const ConvertCliOptions& o, scene::ObjContents& obj, const conve
   for (const ConvertedBuilding& b : buildings) {
     if (b.exitCode != kOk) return fail(b.error, b.exitCode);
     // Yaw 0: a turned building carries its yaw inside its HNI, which is in the world frame.
-    if (!o.packAtlases) city.buildings.push_back({b.name, b.hni, b.complement, b.originM, 0.0, b.boundsM});
+    if (!o.packAtlases)
+      city.buildings.push_back({b.name, b.hni, b.complement, b.originM, 0.0, b.boundsM, b.complementLevels});
     reports.push_back(nlohmann::json::parse(converter::reportJson(b.report)));
   }
   nlohmann::json report{{"objects", reports}};
@@ -382,6 +396,9 @@ int run(const ConvertCliOptions& o) {
   }
   if (o.packAtlases && writesOneHni(o.output))
     return fail("--pack-atlases packs the buildings written into a folder: give -o FOLDER, not " + o.output, kUsage);
+  if (o.complementLevels > 0 && writesOneHni(o.output))
+    return fail("--complement-levels lists the levels in the folder's city.json: give -o FOLDER, not " + o.output,
+                kUsage);
   auto options = convertOptionsOf(o);
   if (!options) return fail(options.error().message, kUsage);
   auto obj = scene::readObj(o.input, {o.zUp});
@@ -425,6 +442,12 @@ void addConvertCommand(CLI::App& app, int& exitCode) {
                   "With -o FOLDER: write each building's complementary mesh as glb (binary glTF, meshoptimizer) "
                   "or obj (OBJ + MTL)")
       ->check(CLI::IsMember({"glb", "obj"}))
+      ->capture_default_str();
+  cmd->add_option("--complement-levels", o->complementLevels,
+                  "With -o FOLDER: write up to N coarser levels of each complementary mesh beside it "
+                  "(NAME.complement.lod1.glb, ...; OpenMesh's decimater at 5, 20, 80 cm), listed with their "
+                  "measured errors in city.json; `nut render --lod auto` draws the level a pixel cannot tell apart")
+      ->check(CLI::Range(0, 4))
       ->capture_default_str();
   cmd->add_option("--report", o->report,
                   "Write the conversion report as JSON (timings, grid, blocks, bytes, surface fractions)")

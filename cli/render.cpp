@@ -110,7 +110,8 @@ int renderOnCpu(const RenderOptions& o, const scene::Scene& scene, const Camera&
     return kOk;
   }
 #if NUT_HAVE_EMBREE
-  auto traced = meshref::traceMeshes(scene.meshPointers());
+  // --lod auto draws each complement at the coarsest level whose error spans under a pixel.
+  auto traced = meshref::traceMeshes(options.lodAuto ? scene.meshPointers(camera) : scene.meshPointers());
   if (!traced) return fail(traced.error().message, kUnreadable);
   std::unique_ptr<const scene::MeshTracer> meshes = std::move(*traced);
 #else
@@ -220,7 +221,9 @@ void addRenderCommand(CLI::App& app, int& exitCode) {
       "(repeatable)");
   cmd->add_option("--lod", o->lod,
                   "auto: draw a sub-block as its visual summary where one pixel spans more than the footprint "
-                  "measured for it (HNIs from `nut grammar --lod`); off: full detail")
+                  "measured for it (HNIs from `nut grammar --lod`), and on the cpu back-end each complementary "
+                  "mesh as the coarsest of its levels (`nut convert --complement-levels`) whose error spans under "
+                  "a pixel; off: full detail")
       ->check(CLI::IsMember({"off", "auto"}))
       ->capture_default_str();
   cmd->add_option("--lod-px", o->lodPx,

@@ -129,6 +129,16 @@ def planecells(r):
     boxes = r.median(base.format("nut_boxes_wedges_mesh"), "items_per_second")
     out.append(f"\nPlane cells / boxes and wedges: {planes / boxes:.2f}; plane cells / fastest Embree: "
                f"{planes / best:.2f}.")
+    far = [("full detail", "far_complements_full"), ("levels the camera picks", "far_complements_levels")]
+    if all(r.has(base.format(key)) for _, key in far):
+        out += ["", "From four times as far, the default conversion's complements at full detail and at their levels "
+                "of detail (`converter/mesh_lod.hpp`, picked as `nut render --lod auto` picks them):\n",
+                "| complements | triangles drawn | ms | Mrays/s | pixels differing from full detail (> 8/255) |",
+                "|---|---|---|---|---|"]
+        for label, key in far:
+            name = base.format(key)
+            out.append(f"| {label} | {r.median(name, 'complement_triangles'):,.0f} | {r.median(name):.1f} "
+                       f"| {r.median(name, 'items_per_second') / 1e6:.2f} | {r.median(name, 'differing_pct'):.3f} % |")
     return out
 
 

@@ -49,6 +49,12 @@ std::string cityJson(const CityManifest& city) {
                         {"position_m", {b.positionM.x, b.positionM.y, b.positionM.z}},
                         {"yaw_deg", b.yawDeg}};
     if (!b.complement.empty()) j["complement"] = b.complement;
+    if (!b.complementLevels.empty()) {
+      nlohmann::json levels = nlohmann::json::array();
+      for (const ComplementLevel& level : b.complementLevels)
+        levels.push_back({{"path", level.path}, {"error_m", level.errorM}});
+      j["complement_levels"] = std::move(levels);
+    }
     if (b.boundsM)
       j["bounds_m"] = {{b.boundsM->min.x, b.boundsM->min.y, b.boundsM->min.z},
                        {b.boundsM->max.x, b.boundsM->max.y, b.boundsM->max.z}};
@@ -96,6 +102,24 @@ Result<CityManifest> parseCityJson(const std::string& text, const std::string& p
       if (!b["complement"].is_string() || !staysInside(b["complement"].get<std::string>()))
         return Error{where + " (" + out.name + "): \"complement\" must be a relative path inside the manifest's folder"};
       out.complement = b["complement"].get<std::string>();
+    }
+    if (b.contains("complement_levels")) {
+      const std::string levelsError = where + " (" + out.name +
+                                      "): \"complement_levels\" must be objects with a \"path\" inside the "
+                                      "manifest's folder and an \"error_m\" of at least 0, increasing, beside a "
+                                      "\"complement\"";
+      const nlohmann::json& levels = b["complement_levels"];
+      if (!levels.is_array() || out.complement.empty()) return Error{levelsError};
+      for (const nlohmann::json& level : levels) {
+        if (!level.is_object() || !level.contains("path") || !level["path"].is_string() ||
+            !staysInside(level["path"].get<std::string>()) || !level.contains("error_m") ||
+            !level["error_m"].is_number() || !std::isfinite(level["error_m"].get<double>()))
+          return Error{levelsError};
+        const double error = level["error_m"].get<double>();
+        if (error < 0 || (!out.complementLevels.empty() && error < out.complementLevels.back().errorM))
+          return Error{levelsError};
+        out.complementLevels.push_back({level["path"].get<std::string>(), error});
+      }
     }
     if (!b.contains("position_m") || !b["position_m"].is_array() || b["position_m"].size() != 3)
       return Error{where + " (" + out.name + "): \"position_m\" must be three numbers"};

@@ -29,6 +29,22 @@ std::vector<const TriangleMesh*> Scene::meshPointers() const {
   return out;
 }
 
+std::vector<const TriangleMesh*> Scene::meshPointers(const Camera& camera) const {
+  const double pixelAngle = 2.0 * std::tan(0.5 * camera.fovYDeg * std::numbers::pi / 180.0) / camera.height;
+  std::vector<const TriangleMesh*> out;
+  for (std::size_t i = 0; i < meshes.size(); ++i) {
+    const WorldBox box = meshes[i].bounds();
+    const double distance = glm::length(camera.eye - glm::clamp(camera.eye, box.min, box.max));
+    const TriangleMesh* chosen = &meshes[i];
+    for (const CoarserMesh& level : coarser[i]) {
+      if (!(level.errorM < kMeshLevelErrorPx * distance * pixelAngle)) break;
+      chosen = &level.mesh;
+    }
+    out.push_back(chosen);
+  }
+  return out;
+}
+
 namespace {
 
 void include(WorldBox& bounds, const glm::dvec3& p) {
@@ -81,13 +97,21 @@ class Loader {
     return Ok{};
   }
 
-  Status addMesh(const std::string& path) {
+  // A mesh and its coarser levels (files and errors, finest first).
+  Status addMesh(const std::string& path, const std::vector<std::pair<std::string, double>>& levels = {}) {
     auto mesh = readMeshFile(path, scene_.warnings);
     if (!mesh) return fail(mesh.error().message);
     const WorldBox box = mesh->bounds();
     include(scene_.bounds, box.min);
     include(scene_.bounds, box.max);
+    std::vector<CoarserMesh> coarser;
+    for (const auto& [levelPath, errorM] : levels) {
+      auto level = readMeshFile(levelPath, scene_.warnings);
+      if (!level) return fail(level.error().message);
+      coarser.push_back({std::move(*level), errorM});
+    }
     scene_.meshes.push_back(std::move(*mesh));
+    scene_.coarser.push_back(std::move(coarser));
     return Ok{};
   }
 
@@ -126,8 +150,11 @@ Result<Scene> loadScene(const std::string& input, const std::vector<std::string>
       const CityBuilding& b = city->buildings[i];
       const std::string where = input + ": building " + std::to_string(i) + " (" + b.name + ")";
       if (Status s = loader.addHni((folder / b.hni).string(), where, &b.positionM, b.yawDeg); !s) return s.error();
+      std::vector<std::pair<std::string, double>> levels;
+      for (const ComplementLevel& level : b.complementLevels)
+        levels.emplace_back((folder / level.path).string(), level.errorM);
       if (!b.complement.empty())
-        if (Status s = loader.addMesh((folder / b.complement).string()); !s) return s.error();
+        if (Status s = loader.addMesh((folder / b.complement).string(), levels); !s) return s.error();
     }
   } else if (Status s = loader.addHni(input, input, nullptr, 0.0); !s) {
     return s.error();

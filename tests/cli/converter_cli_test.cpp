@@ -8,12 +8,14 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
 #include <sstream>
 #include <string>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -459,6 +461,88 @@ TEST(ConvertCli, PackAtlasesWritesADistrictHniAndComplementAndRendersLikeTheSour
 // sheet the complementary mesh draws) 5 km apart are two districts of the default 256 m and one of
 // 8 km: one HNI and one complementary mesh, fewer bytes, and near either house it renders like the
 // source. (That the mesh keeps its 4 mm steps over 5 km is MeshSize's test.)
+// A building whose roof waves 40 cm over 12 m: the roof is left to the complementary mesh, which
+// --complement-levels decimates. city.json lists the levels with errors that grow, each file has
+// fewer triangles, the scene loads them, and `nut render --lod auto` draws the same pixels close
+// up and nearly the same from far away; with -o FILE.png the option is refused.
+TEST(ConvertCli, ComplementLevelsAreListedLoadedAndDrawnFromFar) {
+  std::ostringstream obj;
+  obj << "o wavy\n";
+  constexpr int n = 24;
+  constexpr double size = 12.0;
+  const auto roofY = [](double x, double z) { return 6.0 + 0.4 * std::sin(0.8 * x) * std::cos(0.6 * z); };
+  for (int j = 0; j <= n; ++j)
+    for (int i = 0; i <= n; ++i)
+      obj << "v " << size * i / n << " " << roofY(size * i / n, size * j / n) << " " << size * j / n << "\n";
+  const auto roof = [](int i, int j) { return j * (n + 1) + i + 1; };
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i)
+      obj << "f " << roof(i, j) << " " << roof(i, j + 1) << " " << roof(i + 1, j) << "\nf " << roof(i + 1, j) << " "
+          << roof(i, j + 1) << " " << roof(i + 1, j + 1) << "\n";
+  // Walls from the ground up to the roof's edge, and the floor.
+  int next = (n + 1) * (n + 1) + 1;
+  const auto wall = [&](const std::vector<int>& edge) {
+    for (int k : edge) {
+      const int i = (k - 1) % (n + 1), j = (k - 1) / (n + 1);
+      obj << "v " << size * i / n << " 0 " << size * j / n << "\n";
+    }
+    for (std::size_t t = 0; t + 1 < edge.size(); ++t) {
+      const int g = next + static_cast<int>(t);
+      obj << "f " << g << " " << g + 1 << " " << edge[t + 1] << "\nf " << g << " " << edge[t + 1] << " " << edge[t]
+          << "\n";
+    }
+    next += static_cast<int>(edge.size());
+  };
+  std::vector<int> south, east, north, west;
+  for (int k = 0; k <= n; ++k) south.push_back(roof(k, 0)), east.push_back(roof(n, k));
+  for (int k = n; k >= 0; --k) north.push_back(roof(k, n)), west.push_back(roof(0, k));
+  wall(south), wall(east), wall(north), wall(west);
+  obj << "v 0 0 0\nv 12 0 0\nv 12 0 12\nv 0 0 12\nf " << next << " " << next + 1 << " " << next + 2 << "\nf " << next
+      << " " << next + 2 << " " << next + 3 << "\n";
+  const std::string input = out("wavy.obj");
+  std::ofstream(input) << obj.str();
+
+  fs::remove_all(out("wavy"));
+  const CliRun r = nut("convert " + input + " -o " + out("wavy") + " --complement-levels 2 --quiet");
+  ASSERT_EQ(r.exitCode, 0) << r.stderrText;
+  auto city = scene::readCityJson(out("wavy/city.json"));
+  ASSERT_TRUE(city.ok()) << city.error().message;
+  const scene::CityBuilding& b = city->buildings.at(0);
+  ASSERT_EQ(b.complementLevels.size(), 2u);
+  std::vector<std::string> warnings;
+  auto full = scene::readMeshFile(out("wavy/" + b.complement), warnings);
+  ASSERT_TRUE(full.ok());
+  std::size_t triangles = full->triangles.size();
+  double error = 0;
+  for (const scene::ComplementLevel& level : b.complementLevels) {
+    auto mesh = scene::readMeshFile(out("wavy/" + level.path), warnings);
+    ASSERT_TRUE(mesh.ok()) << level.path;
+    EXPECT_LT(mesh->triangles.size(), triangles) << level.path;
+    EXPECT_GT(level.errorM, error) << level.path;
+    EXPECT_LT(level.errorM, 0.4) << level.path;  // the roof's waves are 40 cm high
+    triangles = mesh->triangles.size(), error = level.errorM;
+  }
+  auto loaded = scene::loadScene(out("wavy/city.json"), {});
+  ASSERT_TRUE(loaded.ok()) << loaded.error().message;
+  EXPECT_EQ(loaded->coarser.at(0).size(), 2u);
+
+  const auto render = [&](const std::string& name, const std::string& eye, const std::string& lod) {
+    const CliRun run = nut("render " + out("wavy/city.json") + " -o " + out(name) + " --eye " + eye +
+                           " --target 6,4,6 --size 320x240 --lod " + lod);
+    EXPECT_EQ(run.exitCode, 0) << run.stderrText;
+    return readPng(out(name), PngKind::Render)->image;
+  };
+  EXPECT_EQ(render("wavy-near-off.png", "20,14,20", "off"), render("wavy-near-auto.png", "20,14,20", "auto"));
+  auto far =
+      compareImages(render("wavy-far-off.png", "120,60,120", "off"), render("wavy-far-auto.png", "120,60,120", "auto"));
+  ASSERT_TRUE(far.ok());
+  EXPECT_LT(far->differingPct, 0.5);
+
+  const CliRun one = nut("convert " + input + " -o " + out("wavy-one.png") + " --complement-levels 1");
+  EXPECT_EQ(one.exitCode, 2);
+  EXPECT_NE(one.stderrText.find("--complement-levels"), std::string::npos) << one.stderrText;
+}
+
 TEST(ConvertCli, ALargerDistrictPacksBuildingsFarApartIntoOne) {
   const std::string house = ::nut::testing::fileText(std::string(NUT_SOURCE_DIR) + "/tests/data/zurich_house.obj");
   std::ostringstream pair;

@@ -4,8 +4,10 @@
 // stopped it.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <numbers>
 #include <string>
 #include <utility>
 
@@ -40,6 +42,13 @@ TEST(City, ManifestRoundTripsAndRejectsPathsOutside) {
   EXPECT_TRUE(back->buildings[1].complement.empty());
   EXPECT_FALSE(back->buildings[0].boundsM);
   EXPECT_EQ(back->buildings[1].boundsM, city.buildings[1].boundsM);
+  EXPECT_TRUE(back->buildings[0].complementLevels.empty());
+  city.buildings[0].complementLevels = {{"a.complement.lod1.obj", 0.05}, {"a.complement.lod2.obj", 0.75}};
+  auto levels = readCityJson(writeFile("levels.json", cityJson(city)));
+  ASSERT_TRUE(levels.ok()) << levels.error().message;
+  ASSERT_EQ(levels->buildings[0].complementLevels.size(), 2u);
+  EXPECT_EQ(levels->buildings[0].complementLevels[1].path, "a.complement.lod2.obj");
+  EXPECT_EQ(levels->buildings[0].complementLevels[1].errorM, 0.75);
 
   const std::string outside = writeFile("outside.json", R"({"format": "nut-city", "version": 1, "buildings": [
       {"name": "x", "hni": "../x.png", "position_m": [0, 0, 0]}]})");
@@ -74,8 +83,18 @@ TEST(City, EachBrokenFieldIsNamed) {
       {manifest("1", R"("name": "a", "hni": "a.png", "position_m": [1, "2", 3])"),
        "building 0 (a): \"position_m\" must be three finite numbers"},
       {manifest("1", good + R"(, "yaw_deg": "north")"), "building 0 (a): \"yaw_deg\" must be a finite number"},
-      {manifest("1", good + R"(, "bounds_m": [[0, 0, 0], [1, 1]])"), "building 0 (a): \"bounds_m\" must be two corners"},
+      {manifest("1", good + R"(, "bounds_m": [[0, 0, 0], [1, 1]])"),
+       "building 0 (a): \"bounds_m\" must be two corners"},
       {manifest("1", good + R"(, "bounds_m": [[0, 5, 0], [1, 1, 1]])"), "min <= max"},
+      {manifest("1", good + R"(, "complement_levels": [{"path": "a.lod1.obj", "error_m": 0.1}])"),
+       "building 0 (a): \"complement_levels\" must be objects"},  // no complement
+      {manifest("1", good + R"(, "complement": "a.obj", "complement_levels": [{"path": "../a.obj", "error_m": 1}])"),
+       "\"complement_levels\" must be objects"},
+      {manifest("1", good + R"(, "complement": "a.obj", "complement_levels": [{"path": "b.obj", "error_m": -1}])"),
+       "\"complement_levels\" must be objects"},
+      {manifest("1", good + R"(, "complement": "a.obj", "complement_levels": [{"path": "b.obj", "error_m": 2},
+                                {"path": "c.obj", "error_m": 1}])"),
+       "\"complement_levels\" must be objects"},
   };
   ASSERT_TRUE(readCityJson(writeFile("good-city.json", manifest("1", good))).ok());
   for (const auto& [text, message] : cases) {
@@ -115,6 +134,38 @@ TEST(LoadScene, PlacesEachBuildingAsTheManifestSays) {
   // mesh's triangle lies at x in [0, 1].
   EXPECT_LE(scene->bounds.min.x, 0.0);
   EXPECT_GT(scene->bounds.max.x, 200.0);
+}
+
+// A complement with two coarser levels: the camera gets the coarsest level whose error spans under
+// a pixel at the mesh's nearest point, worked out here from the camera's pixel angle.
+TEST(LoadScene, AFarCameraGetsTheCoarsestLevelItCannotTellApart) {
+  writeFile("levels/h.obj", "v 0 0 0\nv 10 0 0\nv 0 10 0\nv 10 10 0\nf 1 2 3\nf 2 4 3\n");
+  writeFile("levels/h.lod1.obj", "v 0 0 0\nv 10 0 0\nv 0 10 0\nf 1 2 3\n");
+  writeFile("levels/h.lod2.obj", "v 0 0 0\nv 10 0 0\nv 5 10 0\nf 1 2 3\n");
+  const std::string facade = std::string(NUT_SOURCE_DIR) + "/samples/hni/facade.png";
+  fs::copy_file(facade, outputDir() / "levels" / "facade.png", fs::copy_options::overwrite_existing);
+  CityBuilding building{"one", "facade.png", "h.obj", {100, 0, 0}, 0};
+  building.complementLevels = {{"h.lod1.obj", 0.1}, {"h.lod2.obj", 1.0}};
+  const std::string path = (outputDir() / "levels" / "city.json").string();
+  ASSERT_TRUE(writeCityJson(path, CityManifest{"levels", {building}}).ok());
+  auto scene = loadScene(path, {});
+  ASSERT_TRUE(scene.ok()) << scene.error().message;
+  ASSERT_EQ(scene->coarser.size(), 1u);
+  ASSERT_EQ(scene->coarser[0].size(), 2u);
+  EXPECT_EQ(scene->coarser[0][1].mesh.triangles.size(), 1u);
+  EXPECT_EQ(scene->meshPointers()[0], &scene->meshes[0]);
+
+  Camera camera;  // looking down -z at the mesh in the plane z = 0, from distance d
+  camera.width = 1000, camera.height = 1000, camera.fovYDeg = 40;
+  const double pixelAngle = 2 * std::tan(20 * std::numbers::pi / 180) / 1000;
+  const auto at = [&](double distance) {
+    camera.eye = {5, 5, distance};
+    camera.target = {5, 5, 0};
+    return scene->meshPointers(camera)[0];
+  };
+  EXPECT_EQ(at(0.5 * 0.1 / pixelAngle), &scene->meshes[0]);         // 0.1 m spans 2 pixels
+  EXPECT_EQ(at(2 * 0.1 / pixelAngle), &scene->coarser[0][0].mesh);  // half a pixel; 1 m spans 5
+  EXPECT_EQ(at(2 * 1.0 / pixelAngle), &scene->coarser[0][1].mesh);  // 1 m spans half a pixel
 }
 
 TEST(LoadScene, SaysWhichKindOfFailureStoppedIt) {

@@ -17,6 +17,7 @@
 #include <converter/assemble.hpp>
 #include <converter/axis_order.hpp>
 #include <converter/hidden_cells.hpp>
+#include <converter/mesh_lod.hpp>
 #include <converter/mesh_size.hpp>
 #include <converter/plane_fit.hpp>
 #include <converter/share_axes.hpp>
@@ -666,6 +667,22 @@ Status writeComplement(const std::string& path, const TriangleMesh& mesh) {
   if (!scene::isGlbPath(path)) return writeObj(path, mesh);
   const std::vector<std::uint8_t> glb = meshoptGlb(mesh);
   return writeTextFile(path, std::string(glb.begin(), glb.end()));  // written whole, any bytes
+}
+
+Result<std::vector<scene::ComplementLevel>> writeComplementLevels(const std::string& path, const TriangleMesh& mesh,
+                                                                  int levels) {
+  std::vector<scene::ComplementLevel> written;
+  if (levels <= 0) return written;
+  MeshLodOptions options;
+  options.maxLevels = levels;
+  const std::filesystem::path file(path);
+  for (const MeshLevel& level : meshLevels(mesh, options)) {
+    const std::string name =
+        file.stem().string() + ".lod" + std::to_string(written.size() + 1) + file.extension().string();
+    if (Status s = writeComplement((file.parent_path() / name).string(), level.mesh); !s) return s.error();
+    written.push_back({name, level.errorM});
+  }
+  return written;
 }
 
 namespace {

@@ -14,6 +14,13 @@
 
 namespace nut::scene {
 
+// A coarser level of a building's complementary mesh (converter/mesh_lod.hpp): the file, and the
+// largest distance from the complement's surface to this level's.
+struct ComplementLevel {
+  std::string path;  // relative to the manifest's folder
+  double errorM = 0;
+};
+
 struct CityBuilding {
   std::string name;
   std::string hni;          // path relative to the manifest's folder
@@ -23,6 +30,7 @@ struct CityBuilding {
   // World box of the placed HNI's root block, when the writer knows it: a viewer culls and draws
   // a proxy for the building before its image arrives.
   std::optional<WorldBox> boundsM;
+  std::vector<ComplementLevel> complementLevels;  // finest first, errors increasing; needs a complement
 };
 
 struct CityManifest {

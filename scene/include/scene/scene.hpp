@@ -32,15 +32,31 @@ struct PlacedHni {
 // yaw of docs/FORMAT.md and of a city manifest's yaw_deg.
 glm::dmat3 yawRotation(double degrees);
 
+// A coarser level of a mesh, and the largest distance from the mesh's surface to it.
+struct CoarserMesh {
+  TriangleMesh mesh;
+  double errorM = 0;
+};
+
+// Meshes whose coarser levels span under this many pixels at their nearest point stand in for
+// them (meshPointers with a camera).
+inline constexpr double kMeshLevelErrorPx = 1.0;
+
 struct Scene {
   std::vector<PngFile> files;          // each HNI file once, in the order first named
   std::vector<PlacedHni> hnis;         // in the manifest's order; their images point into `files`,
                                        // which a move of the scene keeps where they are
   std::vector<TriangleMesh> meshes;    // complementary meshes, then the extra meshes
+  std::vector<std::vector<CoarserMesh>> coarser;  // per mesh, its levels (complement_levels), finest first
   WorldBox bounds;                     // solid content of the HNIs and the meshes' vertices
   std::vector<std::string> warnings;   // from the mesh files, one line each naming the file
 
+  // Every mesh at full detail.
   std::vector<const TriangleMesh*> meshPointers() const;
+  // Every mesh as the camera sees it: the coarsest level whose error, seen from the eye at the
+  // nearest point of the mesh's box, spans under kMeshLevelErrorPx pixels (a mesh around the eye
+  // at full detail), as the HNIs' visual summaries stand in for far blocks under --lod auto.
+  std::vector<const TriangleMesh*> meshPointers(const Camera& camera) const;
 };
 
 // Why loading failed: a file could not be read as a PNG or OBJ at all, or it was read and is not

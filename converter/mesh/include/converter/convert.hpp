@@ -23,6 +23,7 @@
 #include <nut/hni.hpp>
 #include <nut/image.hpp>
 #include <nut/png_encode.hpp>
+#include <scene/city.hpp>
 #include <scene/obj.hpp>
 
 namespace nut::converter {
@@ -146,6 +147,12 @@ HniText hniText(const Conversion& conversion);
 // Writes a complementary mesh atomically: a binary glTF compressed with meshoptimizer when the path
 // ends in .glb (mesh_size.hpp's meshoptGlb: 16-bit positions over the mesh's bounds), else OBJ + MTL.
 Status writeComplement(const std::string& path, const TriangleMesh& mesh);
+
+// Writes up to `levels` coarser levels of a complementary mesh (meshLevels, converter/mesh_lod.hpp)
+// beside PATH as writeComplement does, named by inserting ".lodK" before its extension
+// (a.complement.glb: a.complement.lod1.glb, ...). Returns their file names and errors, finest first.
+Result<std::vector<scene::ComplementLevel>> writeComplementLevels(const std::string& path, const TriangleMesh& mesh,
+                                                                  int levels);
 
 // Writes the HNI (PNG with hniText in its text chunks) and, when complementPath is not empty, the
 // complementary mesh (writeComplement), both atomically. Sets report.pngBytes. PngEffort::Small
