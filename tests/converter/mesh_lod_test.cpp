@@ -37,20 +37,14 @@ double pointTriangleDistance(const glm::dvec3& p, const glm::dvec3& a, const glm
   return glm::length(p - (a + ab * (vb * denominator) + ac * (vc * denominator)));
 }
 
-// surfaceDistance, by brute force over every pair.
+// surfaceDistance, by brute force over every pair of sample and triangle.
 double bruteForceDistance(const TriangleMesh& from, const TriangleMesh& to) {
   double worst = 0;
-  const auto measure = [&](const glm::dvec3& p) {
+  for (const glm::dvec3& p : surfaceSamples(from)) {
     double nearest = INFINITY;
     for (const auto& t : to.triangles)
       nearest = std::min(nearest, pointTriangleDistance(p, to.positions[t[0]], to.positions[t[1]], to.positions[t[2]]));
     worst = std::max(worst, nearest);
-  };
-  for (const auto& t : from.triangles) {
-    const glm::dvec3 a = from.positions[t[0]], b = from.positions[t[1]], c = from.positions[t[2]];
-    measure(a), measure(b), measure(c);
-    measure(0.5 * (a + b)), measure(0.5 * (b + c)), measure(0.5 * (c + a));
-    measure((a + b + c) / 3.0);
   }
   return worst;
 }

@@ -198,21 +198,25 @@ TriangleMesh decimated(const TriangleMesh& in, const glm::dvec3& origin, double 
 
 }  // namespace
 
+std::vector<glm::dvec3> surfaceSamples(const TriangleMesh& mesh) {
+  std::vector<glm::dvec3> samples;
+  samples.reserve(7 * mesh.triangles.size());
+  for (const auto& t : mesh.triangles) {
+    const glm::dvec3 a = mesh.positions[t[0]], b = mesh.positions[t[1]], c = mesh.positions[t[2]];
+    samples.insert(samples.end(), {a, b, c, 0.5 * (a + b), 0.5 * (b + c), 0.5 * (c + a), (a + b + c) / 3.0});
+  }
+  return samples;
+}
+
 double surfaceDistance(const TriangleMesh& from, const TriangleMesh& to) {
   if (from.triangles.empty()) return 0.0;
   const glm::dvec3 origin = from.bounds().min;
   const Surface surface(to, origin);
   if (surface.triangles.empty()) return std::numeric_limits<double>::infinity();
   double worst = 0;
-  const auto measure = [&](const glm::dvec3& p) {
+  for (const glm::dvec3& p : surfaceSamples(from)) {
     const glm::dvec3 q = p - origin;
     worst = std::max(worst, surface.distance(Kernel::Point_3(q.x, q.y, q.z)));
-  };
-  for (const auto& t : from.triangles) {
-    const glm::dvec3 a = from.positions[t[0]], b = from.positions[t[1]], c = from.positions[t[2]];
-    measure(a), measure(b), measure(c);
-    measure(0.5 * (a + b)), measure(0.5 * (b + c)), measure(0.5 * (c + a));
-    measure((a + b + c) / 3.0);
   }
   return worst;
 }

@@ -20,6 +20,8 @@
 
 #include <vector>
 
+#include <glm/vec3.hpp>
+
 #include <nut/triangle_mesh.hpp>
 
 namespace nut::converter {
@@ -41,9 +43,12 @@ inline constexpr double kLevelShrink = 0.75;
 // decimation does not shrink it enough.
 std::vector<MeshLevel> meshLevels(const TriangleMesh& mesh, const MeshLodOptions& options = {});
 
-// The largest distance (metres) from the points of `from` (vertices, edge midpoints, face
-// centroids) to the surface of `to`: the error of a level `to` of `from`. Infinity when `to` has
-// no triangles and `from` has.
+// The points a distance between surfaces is measured at: each triangle's vertices, edge midpoints
+// and centroid.
+std::vector<glm::dvec3> surfaceSamples(const TriangleMesh& mesh);
+
+// The largest distance (metres) from surfaceSamples(from) to the surface of `to`: the error of a
+// level `to` of `from`, one way. Infinity when `to` has no triangles and `from` has.
 double surfaceDistance(const TriangleMesh& from, const TriangleMesh& to);
 
 }  // namespace nut::converter
