@@ -138,7 +138,7 @@ def planecells(r):
         for label, key in far:
             name = base.format(key)
             out.append(f"| {label} | {r.median(name, 'complement_triangles'):,.0f} | {r.median(name):.1f} "
-                       f"| {r.median(name, 'items_per_second') / 1e6:.2f} | {r.median(name, 'differing_pct'):.3f} % |")
+                       f"| {r.median(name, 'items_per_second') / 1e6:.2f} | {r.median(name, 'differing_pct'):.4f} % |")
     return out
 
 
