@@ -73,8 +73,9 @@ int renderWithGl(const RenderOptions& o, const scene::Scene& scene, const Camera
     for (const scene::PlacedHni& hni : scene.hnis)
       if (added) added = (*gl)->addHni(images.at(hni.image), hni.originM, hni.worldFromRoot);
   }
-  for (const TriangleMesh& mesh : scene.meshes)
-    if (added) added = (*gl)->addMesh(mesh);
+  // --lod auto: each complement as the coarsest level whose error spans under a pixel, as on the cpu.
+  for (const TriangleMesh* mesh : options.lodAuto ? scene.meshPointers(camera) : scene.meshPointers())
+    if (added) added = (*gl)->addMesh(*mesh);
   if (!added) return fail(added.error().message, kInvalid);
   // With --frames, a first frame (shader compilation, streaming, upload) is drawn untimed.
   std::vector<double> seconds;
@@ -221,9 +222,9 @@ void addRenderCommand(CLI::App& app, int& exitCode) {
       "(repeatable)");
   cmd->add_option("--lod", o->lod,
                   "auto: draw a sub-block as its visual summary where one pixel spans more than the footprint "
-                  "measured for it (HNIs from `nut grammar --lod`), and on the cpu back-end each complementary "
-                  "mesh as the coarsest of its levels (`nut convert --complement-levels`) whose error spans under "
-                  "a pixel; off: full detail")
+                  "measured for it (HNIs from `nut grammar --lod`), and each complementary mesh as the coarsest "
+                  "of its levels (`nut convert --complement-levels`) whose error spans under a pixel; off: full "
+                  "detail")
       ->check(CLI::IsMember({"off", "auto"}))
       ->capture_default_str();
   cmd->add_option("--lod-px", o->lodPx,

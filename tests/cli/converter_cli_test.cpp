@@ -464,7 +464,7 @@ TEST(ConvertCli, PackAtlasesWritesADistrictHniAndComplementAndRendersLikeTheSour
 // A building whose roof waves 40 cm over 12 m: the roof is left to the complementary mesh, which
 // --complement-levels decimates. city.json lists the levels with errors that grow, each file has
 // fewer triangles, the scene loads them, and `nut render --lod auto` draws the same pixels close
-// up and nearly the same from far away; with -o FILE.png the option is refused.
+// up and nearly the same from far away, on either back-end; with -o FILE.png the option is refused.
 TEST(ConvertCli, ComplementLevelsAreListedLoadedAndDrawnFromFar) {
   std::ostringstream obj;
   obj << "o wavy\n";
@@ -526,9 +526,10 @@ TEST(ConvertCli, ComplementLevelsAreListedLoadedAndDrawnFromFar) {
   ASSERT_TRUE(loaded.ok()) << loaded.error().message;
   EXPECT_EQ(loaded->coarser.at(0).size(), 2u);
 
-  const auto render = [&](const std::string& name, const std::string& eye, const std::string& lod) {
+  const auto render = [&](const std::string& name, const std::string& eye, const std::string& lod,
+                          const std::string& backend = "cpu") {
     const CliRun run = nut("render " + out("wavy/city.json") + " -o " + out(name) + " --eye " + eye +
-                           " --target 6,4,6 --size 320x240 --lod " + lod);
+                           " --target 6,4,6 --size 320x240 --lod " + lod + " --backend " + backend);
     EXPECT_EQ(run.exitCode, 0) << run.stderrText;
     return readPng(out(name), PngKind::Render)->image;
   };
@@ -537,6 +538,12 @@ TEST(ConvertCli, ComplementLevelsAreListedLoadedAndDrawnFromFar) {
       compareImages(render("wavy-far-off.png", "120,60,120", "off"), render("wavy-far-auto.png", "120,60,120", "auto"));
   ASSERT_TRUE(far.ok());
   EXPECT_LT(far->differingPct, 0.5);
+
+  // The GL back-end draws the same levels.
+  auto gl = compareImages(render("wavy-far-auto.png", "120,60,120", "auto"),
+                          render("wavy-far-auto-gl.png", "120,60,120", "auto", "gl"));
+  ASSERT_TRUE(gl.ok());
+  EXPECT_LT(gl->differingPct, 0.5);
 
   const CliRun one = nut("convert " + input + " -o " + out("wavy-one.png") + " --complement-levels 1");
   EXPECT_EQ(one.exitCode, 2);
