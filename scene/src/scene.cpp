@@ -29,15 +29,19 @@ std::vector<const TriangleMesh*> Scene::meshPointers() const {
   return out;
 }
 
-std::vector<const TriangleMesh*> Scene::meshPointers(const Camera& camera) const {
+double meshLevelErrorAllowedM(const WorldBox& box, const Camera& camera) {
   const double pixelAngle = 2.0 * std::tan(0.5 * camera.fovYDeg * std::numbers::pi / 180.0) / camera.height;
+  const double distance = glm::length(camera.eye - glm::clamp(camera.eye, box.min, box.max));
+  return kMeshLevelErrorPx * distance * pixelAngle;
+}
+
+std::vector<const TriangleMesh*> Scene::meshPointers(const Camera& camera) const {
   std::vector<const TriangleMesh*> out;
   for (std::size_t i = 0; i < meshes.size(); ++i) {
-    const WorldBox box = meshes[i].bounds();
-    const double distance = glm::length(camera.eye - glm::clamp(camera.eye, box.min, box.max));
+    const double allowedM = meshLevelErrorAllowedM(meshes[i].bounds(), camera);
     const TriangleMesh* chosen = &meshes[i];
     for (const CoarserMesh& level : coarser[i]) {
-      if (!(level.errorM < kMeshLevelErrorPx * distance * pixelAngle)) break;
+      if (!(level.errorM < allowedM)) break;
       chosen = &level.mesh;
     }
     out.push_back(chosen);

@@ -509,6 +509,75 @@ TEST_F(StreamedCity, ComplementaryMeshesAreDrawnWithTheirBuildings) {
   expectAgree("street-complements-glb", gl.image, glbGl.image, kMinWithinPct);
 }
 
+// The generated district converted with levels of its complements (`nut convert
+// tests/data/lod2_district_seed1.obj -o DIR/ --complement-levels 3`). Under --lod auto the viewer
+// draws each complement at the level `nut render --lod auto` picks on the cpu: from four times the
+// fitted distance it fetches the coarse levels only, fewer bytes and triangles than at full detail,
+// and agrees with the cpu scene at those levels; coming near after that, it fetches the finer
+// levels the view wants and agrees with the cpu again.
+TEST_F(StreamedCity, ComplementLevelsFollowTheCamera) {
+  if (!NUT_HAVE_CONVERTER) GTEST_SKIP() << "this build has no converter (NUT_BUILD_CONVERTER=OFF)";
+  const fs::path dir = gltest::outputDir("city") / "district-levels";
+  fs::remove_all(dir);
+  ASSERT_EQ(std::system((std::string(NUT_CLI_PATH) + " convert " + NUT_SOURCE_DIR +
+                         "/tests/data/lod2_district_seed1.obj -o " + dir.string() +
+                         "/ --quiet --png-effort small --complement-levels 3")
+                            .c_str()),
+            0);
+  const fs::path manifest = dir / "city.json";
+  auto scene = scene::loadScene(manifest.string(), {});
+  ASSERT_TRUE(scene) << scene.error().message;
+  std::size_t withLevels = 0;
+  for (const auto& levels : scene->coarser) withLevels += levels.empty() ? 0 : 1;
+  ASSERT_GE(withLevels, 3u);
+
+  // Near: a third of the fitted distance, where most complements are drawn whole.
+  const Camera fitted = fitCamera(scene->bounds, 480, 270);
+  Camera near = fitted, far = fitted;
+  near.eye = fitted.target + (fitted.eye - fitted.target) / 3.0;
+  near.nearM = 0.5;
+  far.eye = fitted.target + 4.0 * (fitted.eye - fitted.target);
+  far.farM *= 4.0;
+  RayCastOptions cast = exactLookup();
+  cast.lodAuto = true;
+  const auto cpu = [&](const Camera& camera) {
+    auto traced = meshref::traceMeshes(scene->meshPointers(camera));
+    EXPECT_TRUE(traced) << traced.error().message;
+    return scene::SceneRenderer(scene->hnis, std::move(*traced)).render(camera, cast).colour;
+  };
+  // Every building drawn, so that a frame's complement triangles are the sum of the levels picked.
+  const auto picked = [&](const std::vector<const TriangleMesh*>& meshes) {
+    std::size_t triangles = 0;
+    for (const TriangleMesh* mesh : meshes) triangles += mesh->triangles.size();
+    return triangles;
+  };
+  const std::size_t full = picked(scene->meshPointers()), atFar = picked(scene->meshPointers(far)),
+                    atNear = picked(scene->meshPointers(near));
+  ASSERT_LT(atFar, atNear);
+  CityRendererOptions all;
+  all.frustumCulling = false;
+  all.occlusionCulling = false;
+  const scene::CityManifest city = manifestAt(manifest);
+  const std::string base = dir.string();
+
+  const Streamed farLevels = stream(city, base, localFiles(), {far}, all, 0, cast);
+  const Streamed farFull = stream(city, base, localFiles(), {far}, all, 0, exactLookup());
+  EXPECT_EQ(farLevels.stats.failed, 0u);
+  expectAgree("district-levels-far", cpu(far), farLevels.image, kMinWithinPct);
+  EXPECT_EQ(farLevels.stats.complementTriangles, atFar);
+  EXPECT_EQ(farFull.stats.complementTriangles, full);
+  EXPECT_LT(farLevels.stats.bytesStreamed, farFull.stats.bytesStreamed);
+  RecordProperty("far_complement_triangles", std::to_string(atFar) + " of " + std::to_string(full));
+  RecordProperty("far_bytes_streamed",
+                 std::to_string(farLevels.stats.bytesStreamed) + " of " + std::to_string(farFull.stats.bytesStreamed));
+
+  // From far, then near: the finer levels are fetched as the view wants them.
+  const Streamed farThenNear = stream(city, base, localFiles(), {far, near}, all, 0, cast);
+  expectAgree("district-levels-near", cpu(near), farThenNear.image, kMinWithinPct);
+  EXPECT_EQ(farThenNear.stats.complementTriangles, atNear);
+  RecordProperty("near_complement_triangles", std::to_string(atNear));
+}
+
 // Runs nut-viewer with `args`; its exit status.
 int runViewer(const std::string& args) {
   return std::system((std::string(NUT_VIEWER_PATH) + " " + args + " 2>/dev/null").c_str());

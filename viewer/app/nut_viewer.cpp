@@ -218,6 +218,7 @@ int run(const ViewerOptions& o) {
                       {"waiting", stats.waiting},
                       {"proxies", stats.proxies},
                       {"as_summary", stats.asSummary},
+                      {"complement_triangles", stats.complementTriangles},
                       {"uploaded", stats.uploaded},
                       {"evicted", stats.evicted},
                       {"refetched", stats.refetched},
@@ -297,7 +298,10 @@ int main(int argc, char** argv) {
   app.add_option("--atlas-page", o.atlasPage, "Atlas page side in texels")
       ->capture_default_str()
       ->check(CLI::Range(64, 16384));
-  app.add_option("--lod", o.lod, "auto: summaries where the HNIs' measured footprints allow (nut grammar --lod)")
+  app.add_option("--lod", o.lod,
+                 "auto: summaries where the HNIs' measured footprints allow (nut grammar --lod), and each "
+                 "complementary mesh as the coarsest of its levels (nut convert --complement-levels) whose error "
+                 "spans under a pixel, each level fetched when first wanted")
       ->check(CLI::IsMember({"off", "auto"}))
       ->capture_default_str();
   app.add_option("--lod-px", o.lodPx, "Summaries for redirection cells below this many pixels (0: full detail)")

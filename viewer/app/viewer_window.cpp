@@ -169,7 +169,8 @@ int runWindow(const WindowRun& run) {
     ImGui::Text("streamed %.2f MB, atlas %.0f MB, %zu evicted", stats.bytesStreamed / 1e6, stats.atlasBytes / 1048576.0,
                 stats.evicted);
     ImGui::ProgressBar(stats.known ? static_cast<float>(stats.loaded) / static_cast<float>(stats.known) : 1.0f);
-    ImGui::Text("as summaries %zu, proxies %zu", stats.asSummary, stats.proxies);
+    ImGui::Text("as summaries %zu, proxies %zu, complement triangles %zu", stats.asSummary, stats.proxies,
+                stats.complementTriangles);
     ImGui::SliderFloat("LOD px (cells)", &lodPx, 0.0f, 16.0f, "%.1f");
     ImGui::SliderFloat("summary px (buildings)", &summaryPx, 0.0f, 64.0f, "%.0f");
     ImGui::Checkbox("frustum culling", &frustumCulling);

@@ -39,10 +39,10 @@ CityLoader::~CityLoader() {
   for (std::thread& t : threads_) t.join();
 }
 
-void CityLoader::request(std::size_t building, std::string location, std::string complement) {
+void CityLoader::request(LoadRequest request) {
   {
     const std::lock_guard lock(mutex_);
-    queue_.push_back({building, std::move(location), std::move(complement)});
+    queue_.push_back(std::move(request));
     ++outstanding_;
   }
   wake_.notify_one();
@@ -86,7 +86,7 @@ Result<TriangleMesh> CityLoader::readComplement(const std::string& location, std
 
 void CityLoader::work() {
   while (true) {
-    Job job;
+    LoadRequest job;
     {
       std::unique_lock lock(mutex_);
       wake_.wait(lock, [this] { return stopping_ || !queue_.empty(); });
@@ -96,25 +96,29 @@ void CityLoader::work() {
     }
     LoadedHni loaded;
     loaded.building = job.building;
-    auto bytes = fetch_(job.location);
-    if (!bytes) {
-      loaded.image = bytes.error();
-    } else {
-      loaded.bytes = bytes->size();
-      auto png = readPngBytes(job.location, std::move(*bytes));
-      if (!png)
-        loaded.image = png.error();
-      else if (Status s = validate(png->image); !s)
-        loaded.image = Error{job.location + ": not a valid HNI: " + s.error().message};
-      else
-        loaded.image = std::move(png->image);
+    loaded.complementLevel = job.complementLevel;
+    loaded.status = Ok{};
+    if (!job.hni.empty()) {
+      auto bytes = fetch_(job.hni);
+      if (!bytes) {
+        loaded.status = bytes.error();
+      } else {
+        loaded.bytes = bytes->size();
+        auto png = readPngBytes(job.hni, std::move(*bytes));
+        if (!png)
+          loaded.status = png.error();
+        else if (Status s = validate(png->image); !s)
+          loaded.status = Error{job.hni + ": not a valid HNI: " + s.error().message};
+        else
+          loaded.image = std::move(png->image);
+      }
     }
-    if (loaded.image && !job.complement.empty()) {
+    if (loaded.status && !job.complement.empty()) {
       auto mesh = readComplement(job.complement, loaded.bytes);
       if (mesh)
         loaded.complement = std::move(*mesh);
       else
-        loaded.image = mesh.error();
+        loaded.status = mesh.error();
     }
     const std::lock_guard lock(mutex_);
     finished_.push_back(std::move(loaded));

@@ -50,6 +50,8 @@ CityRenderer::CityRenderer(const Gl& gl, const HniRenderer& hniRenderer, const M
     building.originM = b.positionM;
     building.worldFromRoot = scene::yawRotation(b.yawDeg);
     building.bounds = b.boundsM;
+    // Without a MeshRenderer there is nothing to draw a complementary mesh with: never fetched.
+    if (meshRenderer_ && !b.complement.empty()) building.complement.resize(1 + b.complementLevels.size());
     buildings_.push_back(std::move(building));
   }
 }
@@ -58,14 +60,82 @@ CityRenderer::CityRenderer(const Gl& gl, const HniRenderer& hniRenderer, const M
 void CityRenderer::receive(CityFrameStats& stats) {
   for (LoadedHni& loaded : loader_.takeFinished()) {
     bytesStreamed_ += loaded.bytes;
-    if (loaded.image) {
+    if (loaded.status)
       uploadQueue_.push_back(std::move(loaded));
-      continue;
-    }
-    buildings_[loaded.building].state = State::Failed;
-    ++failed_;
-    stats.newFailures.push_back(city_.buildings[loaded.building].name + ": " + loaded.image.error().message);
+    else
+      fail(loaded.building, loaded.status.error().message, stats);
   }
+}
+
+// A building that failed is never drawn or requested again.
+void CityRenderer::fail(std::size_t building, const std::string& message, CityFrameStats& stats) {
+  Building& b = buildings_[building];
+  if (b.state == State::Failed) return;
+  if (b.state == State::Loaded) --loaded_;
+  b.state = State::Failed;
+  ++failed_;
+  stats.newFailures.push_back(city_.buildings[building].name + ": " + message);
+}
+
+// A level of a building's complementary mesh onto the GPU; its box joins the building's, which
+// is culled and tested as one. False when the building failed.
+bool CityRenderer::addComplementLevel(LoadedHni& loaded, CityFrameStats& stats) {
+  Building& b = buildings_[loaded.building];
+  if (loaded.complementLevel >= b.complement.size()) return true;
+  auto mesh = GpuMesh::upload(*gl_, *loaded.complement);
+  if (!mesh) {
+    fail(loaded.building, "complementary mesh: " + mesh.error().message, stats);
+    return false;
+  }
+  const WorldBox box = mesh->bounds();
+  if (!b.complementBox) b.complementBox = box;
+  b.complementBox->min = glm::min(b.complementBox->min, box.min);
+  b.complementBox->max = glm::max(b.complementBox->max, box.max);
+  b.bounds->min = glm::min(b.bounds->min, box.min);
+  b.bounds->max = glm::max(b.bounds->max, box.max);
+  b.complement[loaded.complementLevel].mesh.emplace(std::move(*mesh));
+  return true;
+}
+
+// The level of a building's complementary mesh the camera wants: under --lod auto the coarsest
+// whose error spans under a pixel at the nearest point of the levels' box (before any level has
+// arrived, of the building's box), as the cpu scene picks (scene::meshLevelErrorAllowedM).
+std::size_t CityRenderer::wantedLevel(std::size_t building, const Camera& camera, bool lodAuto) const {
+  const Building& b = buildings_[building];
+  const std::optional<WorldBox>& box = b.complementBox ? b.complementBox : b.bounds;
+  if (!lodAuto || !box) return 0;
+  const double allowedM = scene::meshLevelErrorAllowedM(*box, camera);
+  std::size_t level = 0;
+  for (const scene::ComplementLevel& coarser : city_.buildings[building].complementLevels) {
+    if (!(coarser.errorM < allowedM)) break;
+    ++level;
+  }
+  return level;
+}
+
+std::string CityRenderer::levelLocation(std::size_t building, std::size_t level) const {
+  const scene::CityBuilding& entry = city_.buildings[building];
+  return base_ + "/" + (level == 0 ? entry.complement : entry.complementLevels[level - 1].path);
+}
+
+// The level to draw: the one wanted when it has arrived; else it is requested, and the nearest
+// level loaded stands in (finer first), so the frame never waits for a file.
+GpuMesh* CityRenderer::complementToDraw(std::size_t building, const Camera& camera, bool lodAuto) {
+  Building& b = buildings_[building];
+  if (b.complement.empty()) return nullptr;
+  const std::size_t wanted = wantedLevel(building, camera, lodAuto);
+  Building::MeshLevel& level = b.complement[wanted];
+  if (level.mesh) return &*level.mesh;
+  if (!level.requested) {
+    loader_.request({building, "", levelLocation(building, wanted), wanted});
+    level.requested = true;
+    settled_ = false;
+  }
+  for (std::size_t k = wanted; k-- > 0;)
+    if (b.complement[k].mesh) return &*b.complement[k].mesh;
+  for (std::size_t k = wanted + 1; k < b.complement.size(); ++k)
+    if (b.complement[k].mesh) return &*b.complement[k].mesh;
+  return nullptr;
 }
 
 // Empties the page whose buildings were seen least recently, unless one of them was seen this
@@ -84,7 +154,8 @@ bool CityRenderer::evictLeastRecentlySeenPage() {
       b.evicted = true;
       b.occluded = false;
       b.query = {};
-      b.complement.reset();
+      for (Building::MeshLevel& level : b.complement) level = {};
+      b.complementBox.reset();
       --loaded_;
       ++evicted_;
     }
@@ -99,6 +170,11 @@ void CityRenderer::upload(CityFrameStats& stats) {
   for (; taken < uploadQueue_.size() && (taken == 0 || bytes < options_.uploadBytesPerFrame); ++taken) {
     LoadedHni& loaded = uploadQueue_[taken];
     Building& b = buildings_[loaded.building];
+    if (!loaded.image) {
+      // A level of the complement alone, for a building loaded before (dropped if evicted since).
+      if (b.state == State::Loaded) addComplementLevel(loaded, stats);
+      continue;
+    }
     if (!pages_.fits(*loaded.image) && !evictLeastRecentlySeenPage()) {
       stats.overBudget = true;  // stays queued until the view moves on
       break;
@@ -106,26 +182,12 @@ void CityRenderer::upload(CityFrameStats& stats) {
     bytes += loaded.image->pixels.size();
     auto slot = pages_.place(*loaded.image);
     if (!slot) {
-      b.state = State::Failed;
-      ++failed_;
-      stats.newFailures.push_back(city_.buildings[loaded.building].name + ": " + slot.error().message);
+      fail(loaded.building, slot.error().message, stats);
       continue;
     }
     b.slot = *slot;
     b.bounds = HniRayCaster(*loaded.image, b.originM, b.worldFromRoot).bounds();
-    if (loaded.complement && meshRenderer_) {
-      auto mesh = GpuMesh::upload(*gl_, *loaded.complement);
-      if (!mesh) {
-        b.state = State::Failed;
-        ++failed_;
-        stats.newFailures.push_back(city_.buildings[loaded.building].name + ": complementary mesh: " + mesh.error().message);
-        continue;
-      }
-      // Culled and tested as one: the box holds the HNI and its mesh.
-      b.bounds->min = glm::min(b.bounds->min, mesh->bounds().min);
-      b.bounds->max = glm::max(b.bounds->max, mesh->bounds().max);
-      b.complement.emplace(std::move(*mesh));
-    }
+    if (loaded.complement && !addComplementLevel(loaded, stats)) continue;
     const HniView hni(*loaded.image);
     const BlockHeader root = hni.header(hni.fileRecord().root);
     b.rootSizeM = glm::dvec3(root.sizeUnits) * format::kMetresPerUnit;
@@ -233,7 +295,7 @@ Status CityRenderer::drawBoxes(const FrameView& view, const TriangleMesh& boxes)
 
 // Receive, cull, upload a slice and request what the view needs next; the visible buildings,
 // nearest first.
-std::vector<CityRenderer::Visible> CityRenderer::prepare(const FrameView& view, CityFrameStats& stats) {
+std::vector<CityRenderer::Visible> CityRenderer::prepare(const FrameView& view, bool lodAuto, CityFrameStats& stats) {
   ++frame_;
   receive(stats);
   const Camera& camera = view.camera;
@@ -260,10 +322,14 @@ std::vector<CityRenderer::Visible> CityRenderer::prepare(const FrameView& view, 
     if (b.state == State::Loaded) continue;
     ++stats.waiting;
     if (b.state != State::Unrequested || outstanding >= options_.maxOutstanding) continue;
-    const scene::CityBuilding& entry = city_.buildings[v.building];
-    // Without a MeshRenderer there is nothing to draw a complementary mesh with: not fetched.
-    const bool mesh = meshRenderer_ && !entry.complement.empty();
-    loader_.request(v.building, base_ + "/" + entry.hni, mesh ? base_ + "/" + entry.complement : "");
+    // The image with the level of its complement the camera wants now.
+    LoadRequest request{v.building, base_ + "/" + city_.buildings[v.building].hni, "", 0};
+    if (!b.complement.empty()) {
+      request.complementLevel = wantedLevel(v.building, camera, lodAuto);
+      request.complement = levelLocation(v.building, request.complementLevel);
+      b.complement[request.complementLevel].requested = true;
+    }
+    loader_.request(std::move(request));
     b.state = State::Requested;
     refetched_ += b.evicted ? 1 : 0;
     ++outstanding;
@@ -277,7 +343,7 @@ Status CityRenderer::streamIn(const Camera& camera, double timeoutSeconds) {
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(timeoutSeconds);
   while (true) {
     CityFrameStats stats;
-    prepare(view, stats);
+    prepare(view, false, stats);
     if (settled_) return Ok{};
     if (std::chrono::steady_clock::now() > deadline)
       return Error{"the city did not stream in within " + std::to_string(timeoutSeconds) + " s"};
@@ -290,7 +356,7 @@ Status CityRenderer::drawFrame(const Camera& camera, const RayCastOptions& optio
   const FrameView view(camera);
   const bool occlusion = options_.occlusionCulling && meshRenderer_;
   if (occlusion) collectOcclusion();
-  const std::vector<Visible> visible = prepare(view, stats);
+  const std::vector<Visible> visible = prepare(view, options.lodAuto, stats);
 
   // Boxes first, which the depth test then keeps in front of what is ray-cast behind them: the
   // ground, the proxies of what is still streaming in, and the far buildings as their summaries.
@@ -340,7 +406,7 @@ Status CityRenderer::drawFrame(const Camera& camera, const RayCastOptions& optio
   std::vector<std::vector<HniInstance>> perPage(static_cast<std::size_t>(pages_.pageCount()));
   std::vector<int> pageOrder;
   std::vector<std::size_t> tested;    // the buildings this frame's occlusion queries test
-  std::vector<std::size_t> withMesh;  // drawn, with a complementary mesh
+  std::vector<GpuMesh*> meshes;       // the complementary meshes of those drawn, at their levels
   const auto add = [&](std::size_t i) {
     if (summarised[i]) return;
     const Building& b = buildings_[i];
@@ -350,7 +416,10 @@ Status CityRenderer::drawFrame(const Camera& camera, const RayCastOptions& optio
       ++stats.culledByOcclusion;
       return;
     }
-    if (b.complement) withMesh.push_back(i);
+    if (GpuMesh* mesh = complementToDraw(i, camera, options.lodAuto)) {
+      meshes.push_back(mesh);
+      stats.complementTriangles += mesh->triangleCount();
+    }
     auto& instances = perPage[static_cast<std::size_t>(b.slot.page)];
     if (instances.empty()) pageOrder.push_back(b.slot.page);
     instances.push_back({b.slot.origin, b.originM, b.worldFromRoot});
@@ -367,10 +436,10 @@ Status CityRenderer::drawFrame(const Camera& camera, const RayCastOptions& optio
     for (std::size_t i : inOrder) add(i);
   }
   // Opaque meshes before the HNIs and translucent ones after, as OffscreenRenderer draws a scene.
-  for (std::size_t i : withMesh) meshRenderer_->drawOpaque(view, *buildings_[i].complement);
+  for (const GpuMesh* mesh : meshes) meshRenderer_->drawOpaque(view, *mesh);
   for (int page : pageOrder)
     hniRenderer_->draw(view, pages_.page(page), perPage[static_cast<std::size_t>(page)], options);
-  for (std::size_t i : withMesh) meshRenderer_->drawTranslucent(view, *buildings_[i].complement);
+  for (GpuMesh* mesh : meshes) meshRenderer_->drawTranslucent(view, *mesh);
   if (occlusion)
     if (Status s = issueOcclusionQueries(view, tested); !s) return s;
 

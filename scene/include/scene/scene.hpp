@@ -42,6 +42,12 @@ struct CoarserMesh {
 // them (meshPointers with a camera).
 inline constexpr double kMeshLevelErrorPx = 1.0;
 
+// The largest error a level of a mesh inside `box` may have for this camera: kMeshLevelErrorPx
+// pixels at the box's nearest point to the eye (0 for an eye inside it). A level stands in for
+// the mesh when its error is below this, so each renderer (the cpu scene, the viewers) picks the
+// same level.
+double meshLevelErrorAllowedM(const WorldBox& box, const Camera& camera);
+
 struct Scene {
   std::vector<PngFile> files;          // each HNI file once, in the order first named
   std::vector<PlacedHni> hnis;         // in the manifest's order; their images point into `files`,

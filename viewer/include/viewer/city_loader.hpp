@@ -1,7 +1,7 @@
 // viewer/city_loader.hpp — the streaming viewer's loader threads: each building's PNG is fetched,
 // decoded and validated off the render thread, in the order the renderer asks for them, and handed
-// back whole, with the building's complementary mesh when it has one. A failure (missing,
-// unreadable, corrupt, invalid) comes back as the error.
+// back whole, with the level of the building's complementary mesh asked for, or that level alone.
+// A failure (missing, unreadable, corrupt, invalid) comes back as the error.
 #pragma once
 
 #include <condition_variable>
@@ -29,9 +29,19 @@ Fetch localFiles();
 
 struct LoadedHni {
   std::size_t building = 0;
-  Result<Image> image = Error{"not loaded"};  // validated; the building's error when a file failed
-  std::optional<TriangleMesh> complement;     // when the building has one
-  std::size_t bytes = 0;                      // fetched
+  Status status = Error{"not loaded"};     // the building's error when a file failed
+  std::optional<Image> image;              // validated; none when only a complement level was asked for
+  std::optional<TriangleMesh> complement;  // the level asked for, when one was
+  std::size_t complementLevel = 0;         // which: 0 the mesh itself, k its k-th coarser level
+  std::size_t bytes = 0;                   // fetched
+};
+
+// What to fetch for a building: its PNG, a level of its complementary mesh (a GLB, or an OBJ with
+// its MTL files), or both. An empty location is not fetched.
+struct LoadRequest {
+  std::size_t building = 0;
+  std::string hni, complement;
+  std::size_t complementLevel = 0;
 };
 
 class CityLoader {
@@ -41,9 +51,8 @@ class CityLoader {
   CityLoader(const CityLoader&) = delete;
   CityLoader& operator=(const CityLoader&) = delete;
 
-  // Queues a building's PNG, and its complementary mesh (a GLB, or an OBJ with its MTL files) when
-  // `complement` is not empty; requests are served in the order made.
-  void request(std::size_t building, std::string location, std::string complement = {});
+  // Queues a request; requests are served in the order made.
+  void request(LoadRequest request);
   // What has finished since the last call.
   std::vector<LoadedHni> takeFinished();
   // Requested and not yet taken.
@@ -56,11 +65,7 @@ class CityLoader {
   Fetch fetch_;
   mutable std::mutex mutex_;
   std::condition_variable wake_;
-  struct Job {
-    std::size_t building;
-    std::string location, complement;
-  };
-  std::deque<Job> queue_;
+  std::deque<LoadRequest> queue_;
   std::vector<LoadedHni> finished_;
   std::size_t outstanding_ = 0;
   bool stopping_ = false;

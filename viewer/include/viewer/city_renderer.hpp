@@ -63,6 +63,7 @@ struct CityFrameStats {
   std::size_t waiting = 0;         // visible, not loaded yet
   std::size_t proxies = 0;         // of those, drawn as their box
   std::size_t asSummary = 0;       // loaded, drawn as their summary box
+  std::size_t complementTriangles = 0;  // of the complementary meshes drawn, at the levels drawn
   std::size_t uploaded = 0;        // HNIs uploaded this frame
   std::size_t evicted = 0;         // buildings whose page was emptied, so far
   std::size_t refetched = 0;       // requests, so far, for buildings evicted before
@@ -109,7 +110,15 @@ class CityRenderer {
     AtlasSlot slot;
     glm::dvec3 rootSizeM{0.0};       // once loaded: the root block's size and summary
     VisualSummary summary{};
-    std::optional<GpuMesh> complement;  // once loaded, when the manifest names one (world metres)
+    // When the manifest names a complementary mesh (and there is a MeshRenderer): its levels, 0 the
+    // mesh itself and k its k-th coarser level (complement_levels), each fetched when a frame first
+    // wants it, and the box of those loaded (world metres).
+    struct MeshLevel {
+      std::optional<GpuMesh> mesh;
+      bool requested = false;
+    };
+    std::vector<MeshLevel> complement;
+    std::optional<WorldBox> complementBox;
     GlObject query;                  // its occlusion query, while one is in flight
     bool occluded = false;           // the last query's answer
   };
@@ -117,8 +126,13 @@ class CityRenderer {
     std::size_t building;
     double distance;  // from the eye
   };
-  std::vector<Visible> prepare(const FrameView& view, CityFrameStats& stats);
+  std::vector<Visible> prepare(const FrameView& view, bool lodAuto, CityFrameStats& stats);
   void receive(CityFrameStats& stats);
+  void fail(std::size_t building, const std::string& message, CityFrameStats& stats);
+  bool addComplementLevel(LoadedHni& loaded, CityFrameStats& stats);
+  std::size_t wantedLevel(std::size_t building, const Camera& camera, bool lodAuto) const;
+  std::string levelLocation(std::size_t building, std::size_t level) const;
+  GpuMesh* complementToDraw(std::size_t building, const Camera& camera, bool lodAuto);
   Status drawBoxes(const FrameView& view, const TriangleMesh& boxes) const;
   void collectOcclusion();
   Status issueOcclusionQueries(const FrameView& view, const std::vector<std::size_t>& drawn);
