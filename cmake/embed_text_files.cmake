@@ -3,12 +3,16 @@
 #
 # Writes a C++ file that holds every listed text file as a string literal in an array of
 # TYPE {name, text}, returned by NAMESPACE::FUNCTION() as declared in HEADER. A file's name is its
-# path relative to BASE, or its file name when BASE is empty. Run by the build; never committed.
+# path relative to BASE, or its file name when BASE is empty; a source written NAME=PATH is
+# embedded under NAME. Run by the build; never committed.
 string(REPLACE "|" ";" sources "${SOURCES}")
 set(delimiter "nut_text")
 set(entries "")
 foreach(path IN LISTS sources)
-  if(BASE)
+  if(path MATCHES "^([^=]+)=(.+)$")
+    set(name "${CMAKE_MATCH_1}")
+    set(path "${CMAKE_MATCH_2}")
+  elseif(BASE)
     file(RELATIVE_PATH name "${BASE}" "${path}")
   else()
     get_filename_component(name "${path}" NAME)

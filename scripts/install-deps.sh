@@ -31,8 +31,9 @@ packages=(
 
 # npm packages, pinned, into .tools/ (ignored by git): puppeteer-core drives the system Chromium in
 # the web viewer's tests (version 24 is the last that runs on Node.js 20); gltfpack (meshoptimizer's
-# packer) is the size peer of the benchmark report.
-npm_packages=(puppeteer-core@24.43.1 gltfpack@1.3.0)
+# packer) is the size peer of the benchmark report; meshoptimizer's decoder goes into the browser
+# viewer (`nut-viewer --export-web`) to read compressed complementary meshes.
+npm_packages=(puppeteer-core@24.43.1 gltfpack@1.3.0 meshoptimizer@1.3.0)
 root="$(cd "$(dirname "$0")/.." && pwd)"
 
 missing=()

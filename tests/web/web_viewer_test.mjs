@@ -10,9 +10,13 @@
 //             and read back from the atlas texture: 0 bytes differ from libpng's decoding.
 //   broken    the city with corrupt, truncated and missing PNGs: the page still settles, names
 //             every failed file, draws the rest, and matches the desktop render of the same city.
+//   complements  a generated LoD2 district converted by `nut convert --complement-levels 3`: each
+//             building's GLB complement (meshopt-compressed) drawn with its HNI, near at full
+//             detail and from four times as far under lod=auto at its coarser levels, each view
+//             matching the desktop viewer's render and drawing the same complement triangles.
 //
 // node web_viewer_test.mjs --nut NUT --viewer NUT_VIEWER --fixtures WEB_PNG_FIXTURES --source ROOT
-//   --work DIR [--only city|bytes|broken]
+//   --work DIR [--only city|bytes|broken|complements]
 // Exit status: 0 passed, 1 failed, 77 skipped (Chromium cannot start here; the reason is printed).
 // On failure the screenshots, renders and diff images stay in DIR.
 
@@ -76,21 +80,23 @@ async function screenshot(browser, name, server, camera, shot, extra = {}) {
   return { status, messages };
 }
 
-// Screenshot of the page's canvas, and the desktop viewer's render of the same camera, compared.
-async function compareWithDesktop(browser, name, server, cityDir, camera) {
+// Screenshot of the page's canvas, and the desktop viewer's render of the same camera, compared;
+// `extra` URL parameters for the page and `desktopArgs` for nut-viewer. Returns the page's
+// { status, messages } and the desktop's last frame (its --stats).
+async function compareWithDesktop(browser, name, server, cityDir, camera, extra = {}, desktopArgs = []) {
   const shot = path.join(work, `${name}-browser.png`);
-  const { status, messages } = await screenshot(browser, name, server, camera, shot);
+  const { status, messages } = await screenshot(browser, name, server, camera, shot, extra);
   const cameraPath = path.join(work, `${name}-camera.json`);
   fs.writeFileSync(cameraPath, JSON.stringify({ fov_deg: 40, keyframes: [camera] }));
-  const desktop = path.join(work, `${name}-desktop.png`);
+  const desktop = path.join(work, `${name}-desktop.png`), desktopStats = path.join(work, `${name}-desktop.json`);
   run(args.viewer, [path.join(cityDir, 'city.json'), '--headless', '--size', `${SIZE[0]}x${SIZE[1]}`, '--camera-path', cameraPath,
-    '--screenshot', desktop]);
+    '--screenshot', desktop, '--stats', desktopStats, ...desktopArgs]);
   const diff = path.join(work, `${name}-diff.png`);
   const result = JSON.parse(run(args.nut, ['compare', desktop, shot, '--json', '--diff', diff]));
   check(result.differing_pct <= 0.5,
     `${name}: ${(100 - result.differing_pct).toFixed(3)} % of pixels within 8/255 of the desktop render (at least 99.5 %; ` +
       `max difference ${result.max_difference}; diff ${diff})`);
-  return { status, messages };
+  return { status, messages, desktopFrame: JSON.parse(fs.readFileSync(desktopStats, 'utf8')).frames.at(-1) };
 }
 
 // A 100-building city with the page beside it, as a user would make one.
@@ -202,6 +208,52 @@ async function brokenTest(browser) {
   }
 }
 
+async function complementsTest(browser) {
+  const dir = path.join(work, 'district');
+  fs.rmSync(dir, { recursive: true, force: true });
+  run(args.nut, ['convert', path.join(args.source, 'tests', 'data', 'lod2_district_seed1.obj'), '-o', `${dir}/`, '--quiet',
+    '--png-effort', 'small', '--complement-levels', '3']);
+  run(args.viewer, ['--export-web', dir]);
+  const city = JSON.parse(fs.readFileSync(path.join(dir, 'city.json'), 'utf8'));
+  const withLevels = city.buildings.filter((b) => (b.complement_levels ?? []).length > 0).length;
+  check(withLevels >= 3, `complements: ${withLevels} complements have coarser levels`);
+  const server = await serve(dir);
+  try {
+    // Occlusion culling off on both sides, so that the triangle counts cover the same buildings.
+    const near = cameraFor(path.join(dir, 'city.json'));
+    const far = { ...near, eye: near.eye.map((e, a) => near.target[a] + 4 * (e - near.target[a])) };
+    let farTriangles = 0, nearTriangles = 0, nearLoaded = 0;
+    for (const [name, camera, lod] of [['complements-near', near, 'off'], ['complements-far', far, 'auto']]) {
+      const { status, messages, desktopFrame } = await compareWithDesktop(browser, name, server, dir, camera,
+        { occlusion: '0', lod: lod === 'auto' ? 'auto' : '0' }, ['--no-occlusion-culling', '--lod', lod]);
+      check(status.failures.length === 0, `${name}: no file failed (${status.failures.join('; ')})`);
+      const errors = messages.filter((m) => m.startsWith('error') || m.startsWith('pageerror'));
+      check(errors.length === 0, `${name}: no errors in the console (${errors.join('; ')})`);
+      check(status.stats.complementTriangles === desktopFrame.complement_triangles,
+        `${name}: ${status.stats.complementTriangles} complement triangles drawn, the desktop ${desktopFrame.complement_triangles}`);
+      if (lod === 'auto') farTriangles = status.stats.complementTriangles;
+      else [nearTriangles, nearLoaded] = [status.stats.complementTriangles, status.stats.loaded];
+    }
+    check(farTriangles > 0 && farTriangles < nearTriangles, `complements: far at coarser levels (${farTriangles} triangles, near ${nearTriangles})`);
+    // A truncated complement and one that is not a GLB fail their buildings, each named with its
+    // file; the rest still draws and the page settles.
+    const damaged = city.buildings.filter((b) => b.complement).slice(0, 2);
+    const truncated = path.join(dir, damaged[0].complement);
+    fs.truncateSync(truncated, Math.floor(fs.statSync(truncated).size / 2));
+    fs.writeFileSync(path.join(dir, damaged[1].complement), 'this is not a GLB\n');
+    const { status } = await screenshot(browser, 'complements-broken', server, near, path.join(work, 'complements-broken.png'),
+      { occlusion: '0', lod: '0' });
+    for (const b of damaged) {
+      const reported = status.failures.find((f) => f.startsWith(`${b.name}: ${b.complement}: `));
+      check(reported !== undefined, `complements-broken: the page reports ${b.complement} (${reported ?? status.failures.join('; ')})`);
+    }
+    check(status.failures.length === 2 && status.stats.loaded === nearLoaded - 2,
+      `complements-broken: ${status.failures.length} failed, ${status.stats.loaded} loaded (${nearLoaded} before)`);
+  } finally {
+    server.stop();
+  }
+}
+
 fs.mkdirSync(work, { recursive: true });
 const { browser, skip } = await launch(args.source);
 if (skip) {
@@ -213,6 +265,7 @@ try {
   if (!only || only === 'city') await cityTest(browser);
   if (!only || only === 'broken') await brokenTest(browser);
   if (!only || only === 'bytes') await bytesTest(browser);
+  if (!only || only === 'complements') await complementsTest(browser);
 } catch (error) {
   console.log(`FAIL ${error.message}`);
   ++failures;

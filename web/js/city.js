@@ -26,7 +26,8 @@ export function yawRotation(degrees) {
 }
 
 // Parses and checks a manifest's text; `where` names it in errors. Returns
-// { name, buildings: [{ name, hni, complement, positionM, yawDeg, boundsM }] }.
+// { name, buildings: [{ name, hni, complement, complementLevels: [{ path, errorM }], positionM, yawDeg,
+// boundsM }] }.
 export function parseCity(text, where) {
   let j;
   try {
@@ -46,6 +47,18 @@ export function parseCity(text, where) {
     if (!staysInside(b.hni)) throw new Error(`${named}: "hni" must be a relative path inside the manifest's folder`);
     if ('complement' in b && !staysInside(b.complement))
       throw new Error(`${named}: "complement" must be a relative path inside the manifest's folder`);
+    const complementLevels = [];
+    if ('complement_levels' in b) {
+      const levelsError = `${named}: "complement_levels" must be objects with a "path" inside the manifest's folder ` +
+        'and an "error_m" of at least 0, increasing, beside a "complement"';
+      if (!Array.isArray(b.complement_levels) || !b.complement) throw new Error(levelsError);
+      for (const level of b.complement_levels) {
+        if (level === null || typeof level !== 'object' || !staysInside(level.path) || typeof level.error_m !== 'number' ||
+            !Number.isFinite(level.error_m) || level.error_m < 0 || level.error_m < (complementLevels.at(-1)?.errorM ?? 0))
+          throw new Error(levelsError);
+        complementLevels.push({ path: level.path, errorM: level.error_m });
+      }
+    }
     if (!isFinite3(b.position_m)) throw new Error(`${named}: "position_m" must be three finite numbers`);
     if ('yaw_deg' in b && !(typeof b.yaw_deg === 'number' && Number.isFinite(b.yaw_deg)))
       throw new Error(`${named}: "yaw_deg" must be a finite number`);
@@ -57,7 +70,7 @@ export function parseCity(text, where) {
       boundsM = { min: box[0], max: box[1] };
     }
     return {
-      name: b.name, hni: b.hni, complement: b.complement ?? '', positionM: b.position_m,
+      name: b.name, hni: b.hni, complement: b.complement ?? '', complementLevels, positionM: b.position_m,
       yawDeg: b.yaw_deg ?? 0, boundsM,
     };
   });

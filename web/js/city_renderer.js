@@ -5,17 +5,22 @@
 // buildings are frustum-culled, drawn front to back, one instanced draw per page; a building whose
 // box was hidden in the last frame that tested it is skipped (occlusion culling); a building not
 // loaded yet is drawn as its grey box, a far one as its summary box, and a file that fails to
-// load or decode is reported and drawn as missing. The frame never waits for a file.
-//
-// Not here (docs/WEB.md): complementary meshes (OBJ), which are not fetched.
+// load or decode is reported and drawn as missing; a building's complementary mesh (GLB) is drawn
+// with it, under lod=auto as the coarsest of its levels whose error spans under a pixel, each
+// level fetched when a frame first wants it. The frame never waits for a file.
 
 import { AtlasPages } from './atlas.js';
 import { manifestBounds, placedBox, yawRotation } from './city.js';
 import { FrameView, length, sub } from './camera.js';
 import { buildProgram } from './gl_programs.js';
+import { readGlb } from './glb.js';
+import { GpuMesh, MESH_STRIDE, meshVertexArray } from './gpu_mesh.js';
 import { decodePng, readHniRoot } from './hni_png.js';
 
 const PROXY_GREY = [175, 175, 175];
+// A level of a complementary mesh stands in for it where its error spans under this many pixels
+// (scene::kMeshLevelErrorPx).
+const MESH_LEVEL_ERROR_PX = 1;
 const GROUND = [196, 198, 190];
 
 export const DEFAULT_OPTIONS = {
@@ -51,9 +56,6 @@ const holds = (box, p) => [0, 1, 2].every((a) => p[a] >= box.min[a] && p[a] <= b
 const FACES = [[1, 3, 7, 5], [0, 4, 6, 2], [2, 6, 7, 3], [0, 1, 5, 4], [4, 5, 7, 6], [0, 2, 3, 1]];
 const FACE_NORMALS = [[1, 0, 0], [-1, 0, 0], [0, 1, 0], [0, -1, 0], [0, 0, 1], [0, 0, -1]];
 
-// Interleaved vertices of the mesh program (shaders/mesh.vert): position and normal as floats,
-// material as four bytes (0..255, not normalised).
-const MESH_STRIDE = 28;
 // Per-instance data of the ray caster (shaders/hni_proxy.vert): eye in root units, the rotation's
 // three columns, the atlas origin as two integers.
 const INSTANCE_STRIDE = 56;
@@ -86,6 +88,10 @@ export class CityRenderer {
       queryFrame: 0, // the frame that issued it
       occluded: false, // the last query's answer
       answerFrame: 0, // the frame that issued the query of that answer
+      // With a complementary mesh: its levels (0 the mesh itself, k its k-th coarser level), each
+      // { mesh: GpuMesh once loaded, requested }, and the box of those loaded.
+      complement: b.complement ? Array.from({ length: 1 + b.complementLevels.length }, () => ({ mesh: null, requested: false })) : [],
+      complementBox: null,
     }));
     this.cityBox = manifestBounds(city);
     this.uploadQueue = []; // { building, image, root }
@@ -110,33 +116,64 @@ export class CityRenderer {
       gl.enableVertexAttribArray(attribute);
       gl.vertexAttribDivisor(attribute, 1);
     }
-    this.meshVertexArray = gl.createVertexArray();
     this.meshBuffer = gl.createBuffer();
-    gl.bindVertexArray(this.meshVertexArray);
-    gl.bindBuffer(gl.ARRAY_BUFFER, this.meshBuffer);
-    gl.vertexAttribPointer(0, 3, gl.FLOAT, false, MESH_STRIDE, 0);
-    gl.vertexAttribPointer(1, 3, gl.FLOAT, false, MESH_STRIDE, 12);
-    gl.vertexAttribPointer(2, 4, gl.UNSIGNED_BYTE, false, MESH_STRIDE, 24);
-    for (let attribute = 0; attribute < 3; ++attribute) gl.enableVertexAttribArray(attribute);
-    gl.bindVertexArray(null);
-    gl.bindBuffer(gl.ARRAY_BUFFER, null);
+    this.meshVertexArray = meshVertexArray(gl, this.meshBuffer);
   }
 
-  // Fetches and decodes one building; the result waits in `finished` for the next frame. Every
-  // failure (network, HTTP, decoding, header) names the file.
-  async load(index) {
+  // Fetches and decodes a building's HNI (when `withImage`) and the level of its complementary mesh
+  // (when `level` is not null); the result waits in `finished` for the next frame. Every failure
+  // (network, HTTP, decoding, header) names the file.
+  async load(index, withImage, level) {
     const entry = this.city.buildings[index];
-    let bytes = 0;
-    try {
-      const response = await fetch(new URL(entry.hni, this.base));
+    const done = { building: index, bytes: 0, level };
+    let file = '';
+    const fetched = async (path) => {
+      file = path;
+      const response = await fetch(new URL(path, this.base));
       if (!response.ok) throw new Error(`HTTP ${response.status} ${response.statusText}`.trimEnd());
       const buffer = await response.arrayBuffer();
-      bytes = buffer.byteLength;
-      const image = await decodePng(buffer);
-      this.finished.push({ building: index, bytes, image, root: readHniRoot(image, this.constants) });
+      done.bytes += buffer.byteLength;
+      return buffer;
+    };
+    try {
+      if (withImage) {
+        done.image = await decodePng(await fetched(entry.hni));
+        done.root = readHniRoot(done.image, this.constants);
+      }
+      if (level !== null) {
+        const path = level === 0 ? entry.complement : entry.complementLevels[level - 1].path;
+        if (!/\.glb$/i.test(path)) {
+          file = path;
+          throw new Error('the browser viewer reads complementary meshes as GLB (nut convert writes them so by default)');
+        }
+        done.complement = await readGlb(await fetched(path), path);
+      }
     } catch (error) {
-      this.finished.push({ building: index, bytes, error: `${entry.hni}: ${error.message}` });
+      done.error = error.message.startsWith(`${file}: `) ? error.message : `${file}: ${error.message}`;
     }
+    this.finished.push(done);
+  }
+
+  // Fetches a building not loaded yet, with the level of its complement the camera wants now.
+  request(index, camera, lodAuto) {
+    const b = this.buildings[index];
+    let level = null;
+    if (b.complement.length > 0) {
+      level = this.wantedLevel(index, camera, lodAuto);
+      b.complement[level].requested = true;
+    }
+    ++this.outstanding;
+    this.load(index, true, level);
+  }
+
+  // A failed building is never drawn or fetched again.
+  fail(index, message, newFailures) {
+    const b = this.buildings[index];
+    if (b.state === 'failed') return;
+    if (b.state === 'loaded') --this.counts.loaded;
+    b.state = 'failed';
+    ++this.counts.failed;
+    newFailures.push(`${this.city.buildings[index].name}: ${message}`);
   }
 
   // Finished loads join the upload queue; failures are final.
@@ -145,15 +182,58 @@ export class CityRenderer {
     for (const done of this.finished.splice(0)) {
       --this.outstanding;
       this.counts.bytesStreamed += done.bytes;
-      if (!done.error) {
-        this.uploadQueue.push(done);
-        continue;
-      }
-      this.buildings[done.building].state = 'failed';
-      ++this.counts.failed;
-      newFailures.push(`${this.city.buildings[done.building].name}: ${done.error}`);
+      if (done.error) this.fail(done.building, done.error, newFailures);
+      else this.uploadQueue.push(done);
     }
     return newFailures;
+  }
+
+  // A level of a building's complementary mesh onto the GPU; its box joins the building's, which
+  // is culled and tested as one.
+  addComplementLevel(index, mesh, level) {
+    const b = this.buildings[index];
+    const gpu = new GpuMesh(this.gl, mesh);
+    const grow = (box) => ({ min: box.min.map((v, a) => Math.min(v, gpu.bounds.min[a])), max: box.max.map((v, a) => Math.max(v, gpu.bounds.max[a])) });
+    b.complementBox = grow(b.complementBox ?? gpu.bounds);
+    b.bounds = grow(b.bounds);
+    b.complement[level].mesh?.delete();
+    b.complement[level].mesh = gpu;
+  }
+
+  // The level of a building's complementary mesh the camera wants: under lod=auto the coarsest
+  // whose error spans under a pixel at the nearest point of the levels' box (before any has
+  // arrived, of the building's box), as nut's renderers pick it (scene::meshLevelErrorAllowedM).
+  wantedLevel(index, camera, lodAuto) {
+    const b = this.buildings[index];
+    const box = b.complementBox ?? b.bounds;
+    if (!lodAuto || !box) return 0;
+    const nearest = camera.eye.map((e, a) => Math.min(Math.max(e, box.min[a]), box.max[a]));
+    const pixelAngle = (2 * Math.tan((0.5 * camera.fovYDeg * Math.PI) / 180)) / camera.height;
+    const allowedM = MESH_LEVEL_ERROR_PX * length(sub(camera.eye, nearest)) * pixelAngle;
+    let level = 0;
+    for (const coarser of this.city.buildings[index].complementLevels) {
+      if (!(coarser.errorM < allowedM)) break;
+      ++level;
+    }
+    return level;
+  }
+
+  // The level to draw: the one wanted when it has arrived; else it is fetched, and the nearest
+  // level loaded stands in (finer first), so the frame never waits for a file.
+  complementToDraw(index, camera, lodAuto) {
+    const levels = this.buildings[index].complement;
+    if (levels.length === 0) return null;
+    const wanted = this.wantedLevel(index, camera, lodAuto);
+    if (levels[wanted].mesh) return levels[wanted].mesh;
+    if (!levels[wanted].requested) {
+      levels[wanted].requested = true;
+      ++this.outstanding;
+      this.settled = false;
+      this.load(index, false, wanted);
+    }
+    for (let k = wanted - 1; k >= 0; --k) if (levels[k].mesh) return levels[k].mesh;
+    for (let k = wanted + 1; k < levels.length; ++k) if (levels[k].mesh) return levels[k].mesh;
+    return null;
   }
 
   // Empties the page whose buildings were seen least recently, unless one was seen this frame.
@@ -168,6 +248,11 @@ export class CityRenderer {
         b.state = 'unrequested';
         b.evicted = true;
         this.dropQuery(b);
+        for (const level of b.complement) {
+          level.mesh?.delete();
+          Object.assign(level, { mesh: null, requested: false });
+        }
+        b.complementBox = null;
         --this.counts.loaded;
         ++this.counts.evicted;
       }
@@ -179,8 +264,13 @@ export class CityRenderer {
   upload(stats, newFailures) {
     let bytes = 0, taken = 0;
     for (; taken < this.uploadQueue.length && (taken === 0 || bytes < this.options.uploadBytesPerFrame); ++taken) {
-      const { building, image, root } = this.uploadQueue[taken];
+      const { building, image, root, complement, level } = this.uploadQueue[taken];
       const b = this.buildings[building];
+      if (!image) {
+        // A level of the complement alone, for a building loaded before (dropped if evicted since).
+        if (b.state === 'loaded') this.addComplementLevel(building, complement, level);
+        continue;
+      }
       if (!this.pages.fits(image) && !this.evictLeastRecentlySeenPage()) {
         stats.overBudget = true; // stays queued until the view moves on
         break;
@@ -189,14 +279,13 @@ export class CityRenderer {
       try {
         b.slot = this.pages.place(image);
       } catch (error) {
-        b.state = 'failed';
-        ++this.counts.failed;
-        newFailures.push(`${this.city.buildings[building].name}: ${error.message}`);
+        this.fail(building, error.message, newFailures);
         continue;
       }
       b.rootSizeM = root.sizeUnits.map((u) => u * this.constants.metresPerUnit);
       b.summary = root.summary;
       b.bounds = placedBox(b.originM, b.worldFromRoot, b.rootSizeM);
+      if (complement) this.addComplementLevel(building, complement, level);
       b.state = 'loaded';
       ++this.counts.loaded;
       ++stats.uploaded;
@@ -254,7 +343,7 @@ export class CityRenderer {
 
   // Receive, cull, upload a slice and request what the view needs next; the visible buildings,
   // nearest first.
-  prepare(view, stats, newFailures) {
+  prepare(view, lodAuto, stats, newFailures) {
     ++this.frame;
     newFailures.push(...this.receive());
     const eye = view.camera.eye;
@@ -279,8 +368,7 @@ export class CityRenderer {
       if (b.state !== 'unrequested' || this.outstanding >= this.options.maxOutstanding) continue;
       b.state = 'requested';
       if (b.evicted) ++this.counts.refetched;
-      ++this.outstanding;
-      this.load(v.building);
+      this.request(v.building, view.camera, lodAuto);
     }
     this.settled = stats.waiting === 0 && this.uploadQueue.length === 0 && this.outstanding === 0;
     return visible;
@@ -291,13 +379,13 @@ export class CityRenderer {
     const gl = this.gl;
     const stats = {
       known: this.buildings.length, drawn: 0, culledByFrustum: 0, culledByOcclusion: 0, waiting: 0, proxies: 0, asSummary: 0,
-      uploaded: 0, overBudget: false,
+      complementTriangles: 0, uploaded: 0, overBudget: false,
     };
     const newFailures = [];
     const view = new FrameView(camera);
     const occlusion = this.options.occlusionCulling;
     const occlusionChanged = occlusion ? this.collectOcclusion() : 0;
-    const visible = this.prepare(view, stats, newFailures);
+    const visible = this.prepare(view, cast.lodAuto, stats, newFailures);
 
     // Boxes first, which the depth test keeps in front of what is ray-cast behind them.
     const boxes = [];
@@ -332,6 +420,7 @@ export class CityRenderer {
     if (!this.options.frontToBack) order.sort((x, y) => x - y);
     const perPage = new Map();
     const tested = []; // the buildings this frame's occlusion queries test
+    const meshes = []; // the complementary meshes of those drawn, at their levels
     for (const i of order) {
       const b = this.buildings[i];
       const testable = occlusion && !holds(probeBox(b.bounds), view.camera.eye);
@@ -344,8 +433,16 @@ export class CityRenderer {
       if (!perPage.has(page)) perPage.set(page, []);
       perPage.get(page).push(i);
       ++stats.drawn;
+      const mesh = this.complementToDraw(i, view.camera, cast.lodAuto);
+      if (mesh) {
+        meshes.push(mesh);
+        stats.complementTriangles += mesh.triangleCount;
+      }
     }
+    // Opaque meshes before the HNIs and translucent ones after, as nut-viewer draws them.
+    for (const mesh of meshes) mesh.drawOpaque(view, this.programs.mesh);
     for (const [page, instances] of perPage) this.drawHnis(view, page, instances, cast);
+    for (const mesh of meshes) mesh.drawTranslucent(view, this.programs.mesh);
     if (occlusion) this.issueOcclusionQueries(view, tested);
 
     // Settled: everything in view is loaded, and every building skipped as hidden was found hidden

@@ -167,7 +167,7 @@ async function start() {
     hud.textContent =
       (stats.frameMs ? `${(1000 / stats.frameMs).toFixed(1)} fps · ${stats.frameMs.toFixed(0)} ms a frame\n` : 'fps: measuring\n') +
       `buildings ${stats.loaded} loaded / ${stats.known} · ${stats.drawn} drawn · culled ${stats.culledByFrustum} by the frustum, ` +
-      `${stats.culledByOcclusion} hidden\n` +
+      `${stats.culledByOcclusion} hidden` + (stats.complementTriangles ? ` · ${stats.complementTriangles} mesh triangles` : '') + '\n' +
       `${megabytes(stats.bytesStreamed)} MB streamed · atlas ${megabytes(stats.atlasBytes)} MB` +
       (stats.failed ? ` · ${stats.failed} failed` : '') + (stats.overBudget ? ' · over budget' : '');
     const done = stats.drawn + stats.asSummary;
