@@ -391,9 +391,11 @@ Status convertInFrame(const TriangleMesh& mesh, const TriangleMesh* enclosing, c
       SolidStats& s = planeGrid->stats;
       s.planeCells = fitted.planeCells;
       s.twoPlaneCells = fitted.twoPlaneCells;
-      s.nutAreaM2 += fitted.areaM2;
-      s.complementAreaM2 = std::max(0.0, s.complementAreaM2 - fitted.areaM2);
-      s.drawnTwiceAreaM2 = std::max(0.0, s.drawnTwiceAreaM2 - fitted.drawnTwiceM2);
+      // What the mesh still draws that no cell shows: its surface less what is still drawn twice.
+      s.drawnTwiceAreaM2 = std::clamp(s.drawnTwiceAreaM2 - fitted.drawnTwiceM2, 0.0, fitted.complementLeftM2);
+      const double complementLeft = fitted.complementLeftM2 - s.drawnTwiceAreaM2;
+      s.nutAreaM2 += std::max(0.0, s.complementAreaM2 - complementLeft);
+      s.complementAreaM2 = std::min(s.complementAreaM2, complementLeft);
       // Without plane cells it is still a candidate when the planes' corners let boxes show more
       // (walls under a roof whose eaves no face ended at).
       if (fitted.planeCells == 0 && s.nutAreaM2 <= built->stats.nutAreaM2) planeGrid.reset();

@@ -115,49 +115,55 @@ class Fitter {
       ++stats_.candidateCells;
       if (auto fit = fitCell(cell, crossings, planeOf)) fitted.emplace(cell, *fit);
     }
-    // A triangle leaves the mesh only whole: every cell it crosses must fit, and every other
-    // triangle crossing those cells leave too. Cutting faces around the cells that fit would leave
-    // the mesh more triangles than it had.
-    // A narrow part neither blocks a cell nor is blocked by one, unless all of its triangle is
-    // narrow (a sliver): that leaves only where every cell it touches fits.
-    std::vector<bool> leaves(m.triangles.size(), true), sliver(m.triangles.size(), true);
+    // A triangle's parts in the cells that fit leave the mesh; the rest stays, as the triangle
+    // whole when no part leaves, else as polygons that end where the plane cells beside them
+    // begin, on the same plane (stayingParts).
+    // A triangle partly outside every cell (beyond the grid by more than the tolerance) stays
+    // whole, and the cells it crosses are not taken.
+    // A narrow part neither needs its cell to fit nor keeps the triangle from leaving, unless all
+    // of its triangle is narrow (a sliver): that leaves only where every cell it touches fits.
+    std::vector<bool> sliver(m.triangles.size(), true), outside(m.triangles.size(), false);
     std::vector<double> inCells(m.triangles.size(), 0.0);
     for (const auto& [cell, crossings] : crossings_)
       for (const Crossing& x : crossings) {
         sliver[x.triangle] = sliver[x.triangle] && x.narrow;
         inCells[x.triangle] += x.area;
       }
-    // A triangle partly outside every cell (beyond the grid by more than the tolerance) stays.
-    for (std::size_t t = 0; t < leaves.size(); ++t)
-      leaves[t] = inCells[t] >= areas[t] - tol_ * perimeter(polygonOf(t));
-    for (bool changed = true; changed;) {
-      changed = false;
-      for (const auto& [cell, crossings] : crossings_) {
-        const bool fits = fitted.count(cell) > 0;
-        bool taken = fits;
-        for (const Crossing& x : crossings) taken = taken && (x.narrow || leaves[x.triangle]);
-        for (const Crossing& x : crossings)
-          if (leaves[x.triangle] && (x.narrow ? sliver[x.triangle] && !fits : !taken))
-            leaves[x.triangle] = false, changed = true;
-      }
+    for (std::size_t t = 0; t < outside.size(); ++t)
+      outside[t] = inCells[t] < areas[t] - tol_ * perimeter(polygonOf(t));
+    for (auto it = fitted.begin(); it != fitted.end();) {
+      const auto& crossings = crossings_.at(it->first);
+      const bool blocked = std::any_of(crossings.begin(), crossings.end(),
+                                       [&](const Crossing& x) { return !x.narrow && outside[x.triangle]; });
+      it = blocked ? fitted.erase(it) : std::next(it);
     }
+    // Per triangle: 0 no part leaves, 1 every part leaves, 2 some do (cut into the rest).
+    std::vector<int> leaving(m.triangles.size(), -1);
+    for (const auto& [cell, crossings] : crossings_)
+      for (const Crossing& x : crossings) {
+        if (x.narrow && !sliver[x.triangle]) continue;
+        const int here = fitted.count(cell) ? 1 : 0;
+        int& l = leaving[x.triangle];
+        l = l < 0 ? here : (l == here ? l : 2);
+      }
+    for (std::size_t t = 0; t < leaving.size(); ++t)
+      if (outside[t] || leaving[t] < 0 || (sliver[t] && leaving[t] == 2)) leaving[t] = 0;
+    // The leaving parts: in boxes that showed them already (faces given to the mesh whole), or
+    // moved into plane cells from empty ones.
+    for (const auto& [cell, crossings] : crossings_)
+      for (const Crossing& x : crossings)
+        if (leaving[x.triangle] != 0 && fitted.count(cell))
+          (grid_.block.cells[cell].kind == CellKind::Solid ? stats_.drawnTwiceM2 : stats_.areaM2) += x.area;
     for (const auto& [cell, fit] : fitted) {
-      const auto& crossings = crossings_.at(cell);
-      if (fit.keepsCell || !std::all_of(crossings.begin(), crossings.end(),
-                                        [&](const Crossing& x) { return x.narrow || leaves[x.triangle]; }))
-        continue;
+      if (fit.keepsCell) continue;
       const auto [it, added] = cutIndex_.try_emplace(fit.key, static_cast<std::uint32_t>(grid_.block.cuts.size()));
       if (added) grid_.block.cuts.push_back(fit.cut);
       grid_.block.cells[cell] = Cell::planeCell(it->second, fit.material);
       ++stats_.planeCells;
       stats_.twoPlaneCells += fit.cut.planeCount() == 2;
     }
-    // The leaving faces' parts: in boxes that showed them already, or moved into plane cells.
-    for (const auto& [cell, crossings] : crossings_)
-      for (const Crossing& x : crossings)
-        if (leaves[x.triangle] && fitted.count(cell))
-          (fitted.at(cell).keepsCell ? stats_.drawnTwiceM2 : stats_.areaM2) += x.area;
-    removeLeaving(leaves);
+    removeLeaving(leaving, fitted);
+    for (std::size_t t = 0; t < m.triangles.size(); ++t) stats_.complementLeftM2 += area(polygonOf(t));
     return stats_;
   }
 
@@ -208,9 +214,10 @@ class Fitter {
     const TriangleMesh& m = grid_.complement;
     const Block& b = grid_.block;
     std::size_t total = 0;
+    snapped_.resize(m.triangles.size());
     for (std::uint32_t t = 0; t < m.triangles.size(); ++t) {
       if (areas[t] <= 0) continue;
-      Polygon tri = polygonOf(t);
+      Polygon& tri = snapped_[t] = polygonOf(t);
       std::array<int, 3> first{}, last{};
       const auto [side, layer] = boxSideOf(tri);
       if (side >= 0 && layer < 0) continue;  // on the grid's outside: no cell behind it
@@ -405,22 +412,73 @@ class Fitter {
     return std::nullopt;
   }
 
-  // The complementary mesh without the triangles that left it. A triangle that crosses no cell
-  // (it has no part of positive area in any) stays.
-  void removeLeaving(const std::vector<bool>& leaves) {
-    std::vector<bool> crosses(leaves.size(), false);
-    for (const auto& [cell, crossings] : crossings_)
-      for (const Crossing& x : crossings) crosses[x.triangle] = true;
-    TriangleMesh& m = grid_.complement;
-    std::size_t kept = 0;
-    for (std::size_t t = 0; t < m.triangles.size(); ++t) {
-      if (leaves[t] && crosses[t]) continue;
-      m.triangles[kept] = m.triangles[t];
-      m.triangleMaterial[kept] = m.triangleMaterial[t];
-      ++kept;
+  // What stays of a triangle that leaves in part: its parts in the cells that did not fit, or the
+  // triangle less the boxes of the cells that did, whichever takes fewer triangles. Convex
+  // polygons either way, none reaching into a cell that fits.
+  std::vector<Polygon> stayingParts(std::size_t t, const std::vector<std::size_t>& unfit,
+                                    const std::vector<std::size_t>& fit) const {
+    std::vector<Polygon> inCells, outsideBoxes{snapped_[t]};
+    for (const std::size_t cell : unfit)
+      if (Polygon piece = clipToBox(snapped_[t], boxOf(cell)); area(piece) > 0) inCells.push_back(std::move(piece));
+    const auto triangles = [](const std::vector<Polygon>& parts) {
+      std::size_t n = 0;
+      for (const Polygon& p : parts) n += p.size() - 2;
+      return n;
+    };
+    // Each box subtracted may split a part in up to six: given up once it has more parts than
+    // the cells' pieces have triangles.
+    for (const std::size_t cell : fit) {
+      const Box box = boxOf(cell);
+      std::vector<Polygon> next;
+      for (const Polygon& p : outsideBoxes) subtractBox(p, box, next);
+      outsideBoxes = std::move(next);
+      if (outsideBoxes.size() > triangles(inCells)) return inCells;
     }
-    m.triangles.resize(kept);
-    m.triangleMaterial.resize(kept);
+    return triangles(outsideBoxes) < triangles(inCells) ? outsideBoxes : inCells;
+  }
+
+  // The parts of convex polygon p outside the box, as convex polygons appended to `out`: for each
+  // side in turn, what lies beyond it and within the sides before.
+  static void subtractBox(Polygon p, const Box& box, std::vector<Polygon>& out) {
+    for (int a = 0; a < 3 && p.size() >= 3; ++a)
+      for (const bool upper : {false, true}) {
+        if (p.size() < 3) break;
+        dvec3 e(0.0);
+        e[a] = 1.0;
+        const double at = upper ? box.hi[a] : box.lo[a];
+        if (Polygon beyond = clip(p, e, at, !upper); beyond.size() >= 3 && area(beyond) > 0)
+          out.push_back(std::move(beyond));
+        p = clip(p, e, at, upper);
+      }
+  }
+
+  // The complementary mesh without the triangles that left it, and with the triangles that left
+  // in part as what stays of them (stayingParts), each part a fan of triangles. A triangle that
+  // crosses no cell (it has no part of positive area in any) stays.
+  void removeLeaving(const std::vector<int>& leaving, const std::map<std::size_t, Fit>& fitted) {
+    TriangleMesh& m = grid_.complement;
+    std::vector<std::vector<std::size_t>> unfit(m.triangles.size()), fit(m.triangles.size());
+    for (const auto& [cell, crossings] : crossings_)
+      for (const Crossing& x : crossings) (fitted.count(cell) ? fit : unfit)[x.triangle].push_back(cell);
+    std::vector<std::array<std::uint32_t, 3>> triangles;
+    std::vector<std::uint16_t> materials;
+    for (std::size_t t = 0; t < m.triangles.size(); ++t) {
+      if (leaving[t] == 0) {
+        triangles.push_back(m.triangles[t]);
+        materials.push_back(m.triangleMaterial[t]);
+      }
+      if (leaving[t] != 2) continue;
+      for (const Polygon& piece : stayingParts(t, unfit[t], fit[t])) {
+        const auto first = static_cast<std::uint32_t>(m.positions.size());
+        m.positions.insert(m.positions.end(), piece.begin(), piece.end());
+        for (std::uint32_t k = 1; k + 1 < piece.size(); ++k) {
+          triangles.push_back({first, first + k, first + k + 1});
+          materials.push_back(m.triangleMaterial[t]);
+        }
+      }
+    }
+    m.triangles = std::move(triangles);
+    m.triangleMaterial = std::move(materials);
   }
 
   SolidGrid& grid_;
@@ -428,6 +486,7 @@ class Fitter {
   double tol_, cosAngle_;
   std::vector<Plane> planes_;
   std::map<std::size_t, std::vector<Crossing>> crossings_;  // per cell index, in index order
+  std::vector<Polygon> snapped_;  // per triangle, as clipped into cells (laid onto its boundary)
   std::map<CutKey, std::uint32_t> cutIndex_;
   PlaneFitStats stats_;
 };

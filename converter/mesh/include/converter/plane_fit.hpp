@@ -14,10 +14,13 @@
 //     ridge (inside both) or as a valley (inside either).
 // The cell's material is its box's sides'; a plane whose faces have another shows it as the cut's
 // surface material. Only empty cells and boxes become plane cells; a box all of whose faces lie on
-// its sides stays as it is. A face leaves the mesh only whole, when every cell it crosses fits
-// with every other face there; a part narrower than the tolerance (area at most half the
-// tolerance times its perimeter) neither needs its cell to fit nor stops it, unless all of its
-// face is that narrow.
+// its sides stays as it is. A face's parts in the cells that fit leave the mesh, and its parts in
+// the other cells stay as polygons clipped to those cells (a roof pitch whose cell at the ridge's
+// end meets a third plane keeps only that cell's part as mesh); a face with no part in a cell
+// that fits stays whole. A part narrower than the tolerance (area at most half the tolerance
+// times its perimeter) neither needs its cell to fit nor stays, unless all of its face is that
+// narrow (a sliver), which leaves only where every cell it touches fits. A face reaching beyond
+// the grid by more than the tolerance stays whole, and no cell it crosses is taken.
 #pragma once
 
 #include <nut/triangle_mesh.hpp>
@@ -32,6 +35,7 @@ struct PlaneFitStats {
   long long twoPlaneCells = 0;   // of those, with two planes (a ridge, hip or valley)
   double areaM2 = 0;             // surface moved from the complementary mesh to plane cells
   double drawnTwiceM2 = 0;       // surface of faces that left the mesh where boxes showed them already
+  double complementLeftM2 = 0;   // the complementary mesh's surface after fitting
 };
 
 // Fits plane cells to `grid` (its block and complementary mesh change). `inside` is the surface
