@@ -38,13 +38,8 @@ double meshLevelErrorAllowedM(const WorldBox& box, const Camera& camera) {
 std::vector<const TriangleMesh*> Scene::meshPointers(const Camera& camera) const {
   std::vector<const TriangleMesh*> out;
   for (std::size_t i = 0; i < meshes.size(); ++i) {
-    const double allowedM = meshLevelErrorAllowedM(meshes[i].bounds(), camera);
-    const TriangleMesh* chosen = &meshes[i];
-    for (const CoarserMesh& level : coarser[i]) {
-      if (!(level.errorM < allowedM)) break;
-      chosen = &level.mesh;
-    }
-    out.push_back(chosen);
+    const std::size_t level = meshLevel(coarser[i], meshes[i].bounds(), camera);
+    out.push_back(level == 0 ? &meshes[i] : &coarser[i][level - 1].mesh);
   }
   return out;
 }

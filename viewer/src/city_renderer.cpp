@@ -81,7 +81,6 @@ void CityRenderer::fail(std::size_t building, const std::string& message, CityFr
 // is culled and tested as one. False when the building failed.
 bool CityRenderer::addComplementLevel(LoadedHni& loaded, CityFrameStats& stats) {
   Building& b = buildings_[loaded.building];
-  if (loaded.complementLevel >= b.complement.size()) return true;
   auto mesh = GpuMesh::upload(*gl_, *loaded.complement);
   if (!mesh) {
     fail(loaded.building, "complementary mesh: " + mesh.error().message, stats);
@@ -99,18 +98,11 @@ bool CityRenderer::addComplementLevel(LoadedHni& loaded, CityFrameStats& stats) 
 
 // The level of a building's complementary mesh the camera wants: under --lod auto the coarsest
 // whose error spans under a pixel at the nearest point of the levels' box (before any level has
-// arrived, of the building's box), as the cpu scene picks (scene::meshLevelErrorAllowedM).
+// arrived, of the building's box), as the cpu scene picks (scene::meshLevel).
 std::size_t CityRenderer::wantedLevel(std::size_t building, const Camera& camera, bool lodAuto) const {
   const Building& b = buildings_[building];
   const std::optional<WorldBox>& box = b.complementBox ? b.complementBox : b.bounds;
-  if (!lodAuto || !box) return 0;
-  const double allowedM = scene::meshLevelErrorAllowedM(*box, camera);
-  std::size_t level = 0;
-  for (const scene::ComplementLevel& coarser : city_.buildings[building].complementLevels) {
-    if (!(coarser.errorM < allowedM)) break;
-    ++level;
-  }
-  return level;
+  return lodAuto && box ? scene::meshLevel(city_.buildings[building].complementLevels, *box, camera) : 0;
 }
 
 std::string CityRenderer::levelLocation(std::size_t building, std::size_t level) const {

@@ -18,9 +18,6 @@ import { GpuMesh, MESH_STRIDE, meshVertexArray } from './gpu_mesh.js';
 import { decodePng, readHniRoot } from './hni_png.js';
 
 const PROXY_GREY = [175, 175, 175];
-// A level of a complementary mesh stands in for it where its error spans under this many pixels
-// (scene::kMeshLevelErrorPx).
-const MESH_LEVEL_ERROR_PX = 1;
 const GROUND = [196, 198, 190];
 
 export const DEFAULT_OPTIONS = {
@@ -202,14 +199,14 @@ export class CityRenderer {
 
   // The level of a building's complementary mesh the camera wants: under lod=auto the coarsest
   // whose error spans under a pixel at the nearest point of the levels' box (before any has
-  // arrived, of the building's box), as nut's renderers pick it (scene::meshLevelErrorAllowedM).
+  // arrived, of the building's box), as nut's renderers pick it (scene::meshLevel).
   wantedLevel(index, camera, lodAuto) {
     const b = this.buildings[index];
     const box = b.complementBox ?? b.bounds;
     if (!lodAuto || !box) return 0;
     const nearest = camera.eye.map((e, a) => Math.min(Math.max(e, box.min[a]), box.max[a]));
     const pixelAngle = (2 * Math.tan((0.5 * camera.fovYDeg * Math.PI) / 180)) / camera.height;
-    const allowedM = MESH_LEVEL_ERROR_PX * length(sub(camera.eye, nearest)) * pixelAngle;
+    const allowedM = this.constants.meshLevelErrorPx * length(sub(camera.eye, nearest)) * pixelAngle;
     let level = 0;
     for (const coarser of this.city.buildings[index].complementLevels) {
       if (!(coarser.errorM < allowedM)) break;

@@ -148,12 +148,11 @@ class Fitter {
       }
     for (std::size_t t = 0; t < leaving.size(); ++t)
       if (outside[t] || leaving[t] < 0 || (sliver[t] && leaving[t] == 2)) leaving[t] = 0;
-    // The leaving parts: in boxes that showed them already (faces given to the mesh whole), or
-    // moved into plane cells from empty ones.
+    // The leaving parts in boxes that showed them already (faces given to the mesh whole).
     for (const auto& [cell, crossings] : crossings_)
       for (const Crossing& x : crossings)
-        if (leaving[x.triangle] != 0 && fitted.count(cell))
-          (grid_.block.cells[cell].kind == CellKind::Solid ? stats_.drawnTwiceM2 : stats_.areaM2) += x.area;
+        if (leaving[x.triangle] != 0 && fitted.count(cell) && grid_.block.cells[cell].kind == CellKind::Solid)
+          stats_.drawnTwiceM2 += x.area;
     for (const auto& [cell, fit] : fitted) {
       if (fit.keepsCell) continue;
       const auto [it, added] = cutIndex_.try_emplace(fit.key, static_cast<std::uint32_t>(grid_.block.cuts.size()));

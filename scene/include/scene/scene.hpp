@@ -48,6 +48,20 @@ inline constexpr double kMeshLevelErrorPx = 1.0;
 // same level.
 double meshLevelErrorAllowedM(const WorldBox& box, const Camera& camera);
 
+// The level of a mesh inside `box` that the camera draws: 0 the mesh itself, k its k-th of
+// `levels` (finest first, each with its errorM), the coarsest whose error is under
+// meshLevelErrorAllowedM.
+template <class Levels>
+std::size_t meshLevel(const Levels& levels, const WorldBox& box, const Camera& camera) {
+  const double allowedM = meshLevelErrorAllowedM(box, camera);
+  std::size_t level = 0;
+  for (const auto& coarser : levels) {
+    if (!(coarser.errorM < allowedM)) break;
+    ++level;
+  }
+  return level;
+}
+
 struct Scene {
   std::vector<PngFile> files;          // each HNI file once, in the order first named
   std::vector<PlacedHni> hnis;         // in the manifest's order; their images point into `files`,

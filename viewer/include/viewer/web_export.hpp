@@ -19,7 +19,8 @@ std::span<const EmbeddedWebFile> embeddedWebFiles();
 
 // The text of js/generated.js: the ray caster (both lookups) and the mesh program assembled as
 // GLSL ES 3.00 from the same sources as the desktop programs, with each file's first line for
-// error messages, and the format constants the page reads HNI headers with.
+// error messages, the format constants the page reads HNI headers with, and the pixels a
+// complement level's error may span (scene::kMeshLevelErrorPx).
 Result<std::string> generatedWebModule(const ShaderLibrary& library);
 
 // Writes web/ and js/generated.js under `dir` (created if missing), each file whole (a temporary

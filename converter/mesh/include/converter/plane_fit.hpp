@@ -33,7 +33,6 @@ struct PlaneFitStats {
   long long candidateCells = 0;  // cells the complementary mesh crosses
   long long planeCells = 0;      // of those, made plane cells
   long long twoPlaneCells = 0;   // of those, with two planes (a ridge, hip or valley)
-  double areaM2 = 0;             // surface moved from the complementary mesh to plane cells
   double drawnTwiceM2 = 0;       // surface of faces that left the mesh where boxes showed them already
   double complementLeftM2 = 0;   // the complementary mesh's surface after fitting
 };
